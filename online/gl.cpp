@@ -1,0 +1,185 @@
+#include "online/gl.h"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "online/shader_files.h"
+
+namespace coif::gl {
+
+void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
+void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
+void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
+void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+void delete_program(GLuint id) { glDeleteProgram(id); }
+void delete_query(GLuint id) { glDeleteQueries(1, &id); }
+
+void check_errors(const char* where) {
+    const GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        char code[16];
+        std::snprintf(code, sizeof code, "0x%04x", e);
+        throw Error::parameter("OpenGL", std::string("error ") + code + " in " + where);
+    }
+}
+
+Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(std::max<size_t>(bytes, 1)), data, flags);
+    return Buffer(id);
+}
+
+VertexArray make_vertex_array() {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    return VertexArray(id);
+}
+
+std::string shader_text(const std::string& path) {
+    const auto bytes = embedded::shader_file(path);
+    if (!bytes) throw Error(path, "", "no such shader file compiled into coif");
+    return std::string(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+}
+
+namespace {
+
+void expand_includes(const std::string& path, std::set<std::string>& seen, std::ostringstream& out, int depth) {
+    if (depth > 16) throw Error(path, "", "#include nesting deeper than 16 (a cycle?)");
+    std::istringstream in(shader_text(path));
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        const auto first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+            const auto a = line.find('"'), b = line.rfind('"');
+            if (a == std::string::npos || b <= a) throw Error(path, "line " + std::to_string(number), "malformed #include");
+            const std::string inc = line.substr(a + 1, b - a - 1);
+            if (seen.insert(inc).second) expand_includes(inc, seen, out, depth + 1);
+            out << "\n";
+            continue;
+        }
+        out << line << "\n";
+    }
+}
+
+GLuint compile(const std::string& path, const std::vector<std::string>& defines) {
+    GLenum stage;
+    if (path.ends_with(".vert")) stage = GL_VERTEX_SHADER;
+    else if (path.ends_with(".frag")) stage = GL_FRAGMENT_SHADER;
+    else if (path.ends_with(".comp")) stage = GL_COMPUTE_SHADER;
+    else throw Error(path, "", "unknown shader stage (use .vert, .frag or .comp)");
+    std::ostringstream src;
+    src << "#version 450 core\n";
+    for (const auto& d : defines) src << "#define " << d << "\n";
+    std::set<std::string> seen{"shaders/gl/prelude.glsl", path};
+    expand_includes("shaders/gl/prelude.glsl", seen, src, 0);
+    expand_includes(path, seen, src, 0);
+    const std::string text = src.str();
+    const char* ptr = text.c_str();
+    const GLuint shader = glCreateShader(stage);
+    glShaderSource(shader, 1, &ptr, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+        std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+        glGetShaderInfoLog(shader, len, nullptr, log.data());
+        glDeleteShader(shader);
+        throw Error(path, "compile", log);
+    }
+    return shader;
+}
+
+}  // namespace
+
+Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
+    const GLuint program = glCreateProgram();
+    handle_ = ProgramHandle(program);
+    std::vector<GLuint> shaders;
+    try {
+        for (const auto& f : files) shaders.push_back(compile(f, defines));
+    } catch (...) {
+        for (GLuint s : shaders) glDeleteShader(s);
+        throw;
+    }
+    for (GLuint s : shaders) glAttachShader(program, s);
+    glLinkProgram(program);
+    for (GLuint s : shaders) glDeleteShader(s);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+        std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(program, len, nullptr, log.data());
+        throw Error(files.empty() ? std::string() : files.front(), "link", log);
+    }
+}
+
+RenderTarget::RenderTarget(int width, int height, GLenum color_format, int samples)
+    : width_(width), height_(height), samples_(samples), format_(color_format) {
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_side);
+    if (width <= 0 || height <= 0 || width > max_side || height > max_side)
+        throw Error::parameter("render target", "size " + std::to_string(width) + "x" + std::to_string(height) +
+                                                    " is outside 1.." + std::to_string(max_side) + " of this GPU");
+    GLuint id = 0;
+    glCreateRenderbuffers(1, &id);
+    color_ = Renderbuffer(id);
+    glNamedRenderbufferStorageMultisample(id, samples > 1 ? samples : 0, color_format, width, height);
+    glCreateRenderbuffers(1, &id);
+    depth_ = Renderbuffer(id);
+    glNamedRenderbufferStorageMultisample(id, samples > 1 ? samples : 0, GL_DEPTH_COMPONENT32F, width, height);
+    glCreateFramebuffers(1, &id);
+    fbo_ = Framebuffer(id);
+    glNamedFramebufferRenderbuffer(id, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_.id());
+    glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+    if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error::parameter("render target", "framebuffer is incomplete");
+    if (samples > 1) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        resolve_color_ = Texture(id);
+        glTextureStorage2D(id, 1, color_format, width, height);
+        glCreateFramebuffers(1, &id);
+        resolve_fbo_ = Framebuffer(id);
+        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, resolve_color_.id(), 0);
+    }
+    check_errors("RenderTarget");
+}
+
+void RenderTarget::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glViewport(0, 0, width_, height_);
+}
+
+GLuint RenderTarget::resolve() const {
+    if (samples_ <= 1) return fbo_.id();
+    glBlitNamedFramebuffer(fbo_.id(), resolve_fbo_.id(), 0, 0, width_, height_, 0, 0, width_, height_,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    return resolve_fbo_.id();
+}
+
+Image RenderTarget::read_back() const {
+    const GLuint source = resolve();
+    Image image(width_, height_, 4);
+    std::vector<float> rows(image.pixels.size());
+    glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, rows.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    check_errors("RenderTarget::read_back");
+    const size_t row = static_cast<size_t>(width_) * 4;
+    for (int y = 0; y < height_; ++y)  // GL's row 0 is the bottom; coif::Image's is the top
+        std::copy_n(rows.data() + static_cast<size_t>(height_ - 1 - y) * row, row, image.pixels.data() + y * row);
+    return image;
+}
+
+}  // namespace coif::gl

@@ -1,0 +1,94 @@
+#pragma once
+// Thin RAII owners of GL objects and the program builder. Everything GL in coif goes through
+// online/; models/, shaders/ (C++ side), offline/ and db/ never include GL.
+#include <epoxy/gl.h>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "models/core/image.h"
+
+namespace coif::gl {
+
+// Owns one GL object name; `Deleter` frees it.
+template <void (*Deleter)(GLuint)>
+class Handle {
+public:
+    Handle() = default;
+    explicit Handle(GLuint id) : id_(id) {}
+    ~Handle() { reset(); }
+    Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+    Handle& operator=(Handle&& o) noexcept {
+        if (this != &o) { reset(); id_ = std::exchange(o.id_, 0); }
+        return *this;
+    }
+    GLuint id() const { return id_; }
+    void reset() { if (id_) Deleter(id_); id_ = 0; }
+
+private:
+    GLuint id_ = 0;
+};
+
+void delete_buffer(GLuint id);
+void delete_vertex_array(GLuint id);
+void delete_texture(GLuint id);
+void delete_framebuffer(GLuint id);
+void delete_renderbuffer(GLuint id);
+void delete_program(GLuint id);
+void delete_query(GLuint id);
+
+using Buffer = Handle<delete_buffer>;
+using VertexArray = Handle<delete_vertex_array>;
+using Texture = Handle<delete_texture>;
+using Framebuffer = Handle<delete_framebuffer>;
+using Renderbuffer = Handle<delete_renderbuffer>;
+using ProgramHandle = Handle<delete_program>;
+using Query = Handle<delete_query>;
+
+Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
+VertexArray make_vertex_array();
+
+// The text of a GLSL file under shaders/, compiled into the binary; throws coif::Error if unknown.
+std::string shader_text(const std::string& path);
+
+// Links a program from GLSL files under shaders/ (paths like "shaders/gl/strand_lines.vert"),
+// stage chosen by extension (.vert .frag .comp). Each source gets "#version 450 core", the
+// defines, shaders/gl/prelude.glsl, then its text with every `#include "shaders/…"` line replaced
+// by that file (once per program). Compile/link errors throw coif::Error with the log.
+class Program {
+public:
+    Program() = default;
+    Program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+    GLuint id() const { return handle_.id(); }
+    GLint uniform(const char* name) const { return glGetUniformLocation(handle_.id(), name); }
+    void use() const { glUseProgram(handle_.id()); }
+
+private:
+    ProgramHandle handle_;
+};
+
+// An offscreen colour (+ depth) target, optionally multisampled and resolved on read-back.
+class RenderTarget {
+public:
+    RenderTarget(int width, int height, GLenum color_format = GL_RGBA16F, int samples = 1);
+    void bind() const;
+    // Resolves the samples (if multisampled) and returns a single-sample framebuffer holding the image.
+    GLuint resolve() const;
+    // Resolves and reads the colour attachment back as a linear RGBA image, row 0 at the top.
+    Image read_back() const;
+    int width() const { return width_; }
+    int height() const { return height_; }
+    GLuint framebuffer() const { return fbo_.id(); }
+
+private:
+    int width_, height_, samples_;
+    GLenum format_;
+    Framebuffer fbo_, resolve_fbo_;
+    Renderbuffer color_, depth_;
+    Texture resolve_color_;
+};
+
+// Throws coif::Error if glGetError reports something, naming `where`.
+void check_errors(const char* where);
+
+}  // namespace coif::gl

@@ -1,0 +1,106 @@
+// The coif command as users meet it: help, exit codes, errors on stderr, no partial output files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "models/core/image.h"
+#include "tests/common/run.h"
+
+namespace coif {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using test::run_coif;
+
+TEST(Cli, HelpListsEveryNounAndExitsZero) {
+    const auto r = run_coif("--help");
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* noun : {"hair", "render", "view", "bench"}) EXPECT_THAT(r.out, HasSubstr(noun));
+    EXPECT_THAT(r.out, HasSubstr("Exit status"));
+}
+
+// Every leaf subcommand's help has a description and an example.
+TEST(Cli, EverySubcommandHelpTeaches) {
+    for (const char* cmd : {"hair inspect", "hair convert", "render", "view", "bench gl"}) {
+        const auto r = run_coif(std::string(cmd) + " --help");
+        EXPECT_EQ(r.exit_code, 0) << cmd;
+        EXPECT_THAT(r.out, HasSubstr("Examples:")) << cmd;
+        EXPECT_THAT(r.out, HasSubstr("OPTIONS")) << cmd;
+    }
+}
+
+TEST(Cli, VersionPrintsTheGlRenderer) {
+    const auto r = run_coif("--version");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_THAT(r.out, HasSubstr("coif "));
+    EXPECT_THAT(r.out, HasSubstr("GL_RENDERER: "));
+}
+
+TEST(Cli, BadUsageExitsTwo) {
+    EXPECT_EQ(run_coif("").exit_code, 2);
+    EXPECT_EQ(run_coif("no-such-command").exit_code, 2);
+    EXPECT_EQ(run_coif("hair inspect").exit_code, 2);
+    EXPECT_EQ(run_coif("render --width 0").exit_code, 2);
+    EXPECT_EQ(run_coif("render --width 100000 --height 100000").exit_code, 2);
+}
+
+TEST(Cli, HairInspectMatchesProvenanceAsJson) {
+    COIF_SHARED_DATA(path, "harolongo.data");
+    const auto r = run_coif("hair inspect --json '" + path.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["strands"], 7905);
+    EXPECT_EQ(j["points"], 166005);
+    EXPECT_NEAR(j["strand_length"]["mean"].get<double>(), 23.5, 0.05);  // PROVENANCE.md, 1 decimal
+    EXPECT_THAT(j["axis_convention"].get<std::string>(), HasSubstr("-y"));
+}
+
+TEST(Cli, FailuresExitOneNameTheFileAndWriteNothing) {
+    const auto dir = test::scratch_dir("cli-fail");
+    std::ofstream(dir / "bad.hair") << "HAIRtruncated";
+    auto r = run_coif("hair inspect '" + (dir / "bad.hair").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("bad.hair"));
+    EXPECT_THAT(r.err, HasSubstr("truncated"));
+
+    r = run_coif("hair convert '" + (dir / "bad.hair").string() + "' '" + (dir / "out.hair").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_FALSE(fs::exists(dir / "out.hair"));
+
+    r = run_coif("render --strands '" + (dir / "bad.hair").string() + "' -o '" + (dir / "out.png").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+
+    r = run_coif("render -o '" + (dir / "image.xyz").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("unknown image extension"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // only bad.hair
+    fs::remove_all(dir);
+}
+
+TEST(Cli, ConvertDataToHairPreservesStrands) {
+    COIF_SHARED_DATA(path, "Bangs_100.data");
+    const auto dir = test::scratch_dir("cli-convert");
+    const auto r = run_coif("hair convert '" + path.string() + "' '" + (dir / "b.hair").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(run_coif("hair inspect --json '" + (dir / "b.hair").string() + "'").out);
+    EXPECT_EQ(j["strands"], 100);
+    EXPECT_EQ(j["points"], 1165);
+    fs::remove_all(dir);
+}
+
+TEST(Cli, RenderDefaultSceneWritesARealImage) {
+    const auto dir = test::scratch_dir("cli-render");
+    const auto r = run_coif("render --width 160 --height 120 -o '" + (dir / "a.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image img = read_image(dir / "a.exr");
+    ASSERT_EQ(img.width, 160);
+    // The default head of hair fills a good part of the frame: count pixels brighter than the background.
+    int hair = 0;
+    for (int i = 0; i < img.width * img.height; ++i) hair += img.pixels[size_t(i) * 4] > 0.08f;
+    EXPECT_GT(hair, img.width * img.height / 20) << "no hair visible in the default render";
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace coif

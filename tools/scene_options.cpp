@@ -1,0 +1,38 @@
+#include "tools/scene_options.h"
+
+#include "models/core/error.h"
+#include "tools/assets.h"
+
+namespace coif::cli {
+
+// Largest image side the commands accept (the GL target may allow less; it is checked too).
+constexpr int kMaxRenderSide = 16384;
+
+void SceneOptions::add_to(CLI::App* app) {
+    app->add_option("--strands", strands, "Strand file to draw (.hair or .data); default: the embedded default hairstyle's strands");
+    app->add_option("--width", width, "Image width in pixels")->check(CLI::Range(1, kMaxRenderSide));
+    app->add_option("--height", height, "Image height in pixels")->check(CLI::Range(1, kMaxRenderSide));
+    app->add_option("--azimuth", azimuth_deg, "Camera azimuth about +y in degrees, 0 = looking from +z");
+    app->add_option("--elevation", elevation_deg, "Camera elevation in degrees above the horizontal")->check(CLI::Range(-89.0, 89.0));
+    app->add_option("--fov", fov_deg, "Vertical field of view in degrees")->check(CLI::Range(1.0, 150.0));
+    app->add_flag("--keep-axes", keep_axes, "Keep the file's axes (by default a model whose hair hangs along -x or -z is turned y-up)");
+}
+
+Strands SceneOptions::load_strands(std::string* label) const {
+    Strands s = strands.empty() ? parse_hair(asset_bytes("default_strands.hair"), "<embedded default_strands.hair>")
+                                : read_strands(strands);
+    if (label) *label = strands.empty() ? "embedded default strands (harolongo subsample)" : strands;
+    if (!keep_axes) {
+        const glm::mat3 r = hang_axis_rotation(strand_stats(s));
+        for (auto& p : s.points) p = r * p;
+    }
+    return s;
+}
+
+Camera SceneOptions::camera_for(const Strands& s) const {
+    const StrandStats st = strand_stats(s);
+    return Camera::orbit(glm::vec3(st.bbox_min), glm::vec3(st.bbox_max), static_cast<float>(radians(azimuth_deg)),
+                         static_cast<float>(radians(elevation_deg)), width, height, static_cast<float>(radians(fov_deg)));
+}
+
+}  // namespace coif::cli
