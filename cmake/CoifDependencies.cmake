@@ -7,6 +7,7 @@ find_package(glfw3 CONFIG REQUIRED)
 find_package(GTest CONFIG REQUIRED)
 find_package(benchmark CONFIG REQUIRED)
 find_package(Ceres CONFIG REQUIRED)
+find_package(embree 3 CONFIG REQUIRED)   # Embree 3 (libembree-dev): curve ray tracing of the reference renderer
 find_package(PkgConfig REQUIRED)
 # OpenImageIO through pkg-config: Debian 12's CMake config of OpenImageIO names /usr/include/opencv4
 # (present only with libopencv-dev) in its include paths, which breaks configuration without OpenCV.
