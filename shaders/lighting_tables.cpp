@@ -1,0 +1,254 @@
+#include "shaders/lighting_tables.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <thread>
+#include <vector>
+
+#include "shaders/lighting.h"
+
+namespace coif::shading {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Rows y = 0..height-1 of `fill(y)` on up to two threads (the tables are independent per row).
+template <class Fn>
+void parallel_rows(int height, Fn fill) {
+    const int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 2);
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            for (int y = t; y < height; y += threads) fill(y);
+        });
+    for (auto& th : pool) th.join();
+}
+
+double von_mises_weight(double x, double lambda) {
+    const double s = std::sin(0.5 * x);
+    return std::exp(-4.0 * s * s / (lambda * lambda));
+}
+
+// E[|cos((Δ-x)/2)|^k] for k = 0..6 under the normalised g^c(x; 0, λ).
+std::array<double, 7> ck_all(double lambda, double dphi) {
+    std::array<double, 7> acc{};
+    double norm = 0.0;
+    const bool narrow = lambda < 0.3;
+    const int n = narrow ? 401 : 2048;
+    const double x0 = narrow ? -12.0 * lambda : -kPi;
+    const double dx = narrow ? 24.0 * lambda / (n - 1) : 2.0 * kPi / n;
+    for (int i = 0; i < n; ++i) {
+        const double x = x0 + i * dx;
+        double w = von_mises_weight(x, lambda);
+        if (narrow && (i == 0 || i == n - 1)) w *= 0.5;
+        const double c = std::abs(std::cos(0.5 * (dphi - x)));
+        double p = 1.0;
+        for (int k = 0; k < 7; ++k) {
+            acc[k] += w * p;
+            p *= c;
+        }
+        norm += w;
+    }
+    for (double& a : acc) a /= norm;
+    return acc;
+}
+
+// (H_0, H_2, H_4) of TT or TRT: ∫_{-1}^{1} (1-F)² [F] h^k dh with h = sin γ.
+std::array<double, 3> h_all(bool trt, double eta, double theta_d) {
+    constexpr int n = 2000;
+    std::array<double, 3> acc{};
+    const double dg = kPi / n;
+    for (int i = 0; i < n; ++i) {
+        const double g = -0.5 * kPi + (i + 0.5) * dg;
+        const double h = std::sin(g);
+        const double f = glsl::fresnel_h(float(eta), float(theta_d), float(h));
+        double v = (1.0 - f) * (1.0 - f) * (trt ? f : 1.0) * std::cos(g) * dg;
+        const double h2 = h * h;
+        acc[0] += v;
+        acc[1] += v * h2;
+        acc[2] += v * h2 * h2;
+    }
+    return acc;
+}
+
+// Coefficients of the relative least-squares fit F(η, μ) ≈ Σ_{n<6} f_n μ^n on μ ∈ [0, 1].
+std::array<double, 6> fresnel_fit_coefficients(double eta) {
+    std::array<double, 6> f{};
+    if (eta <= 1.0 + 1e-9) return f;
+    constexpr int samples = 256;
+    double a[6][7] = {};
+    for (int i = 0; i < samples; ++i) {
+        const double mu = 0.5 - 0.5 * std::cos(kPi * (i + 0.5) / samples);  // Chebyshev nodes
+        const double F = glsl::fresnel_dielectric(float(eta), float(mu));
+        const double w = 1.0 / (F * F);
+        double p[6];
+        p[0] = 1.0;
+        for (int k = 1; k < 6; ++k) p[k] = p[k - 1] * mu;
+        for (int r = 0; r < 6; ++r) {
+            for (int c = 0; c < 6; ++c) a[r][c] += w * p[r] * p[c];
+            a[r][6] += w * p[r] * F;
+        }
+    }
+    for (int col = 0; col < 6; ++col) {  // Gaussian elimination with partial pivoting
+        int piv = col;
+        for (int r = col + 1; r < 6; ++r)
+            if (std::abs(a[r][col]) > std::abs(a[piv][col])) piv = r;
+        for (int c = 0; c < 7; ++c) std::swap(a[col][c], a[piv][c]);
+        for (int r = 0; r < 6; ++r) {
+            if (r == col) continue;
+            const double m = a[r][col] / a[col][col];
+            for (int c = col; c < 7; ++c) a[r][c] -= m * a[col][c];
+        }
+    }
+    for (int k = 0; k < 6; ++k) f[k] = a[k][6] / a[k][k];
+    return f;
+}
+
+}  // namespace
+
+double ck_direct(int k, double lambda_p, double dphi) { return ck_all(lambda_p, dphi)[std::clamp(k, 0, 6)]; }
+
+double h_direct(bool trt, int k, double eta, double theta_d) {
+    return h_all(trt, eta, theta_d)[std::clamp(k / 2, 0, 2)];
+}
+
+double half_mass_direct(double lambda, double delta) {
+    if (lambda < 0.02) {  // g^c is a Gaussian to float precision over its support
+        return 0.5 * (std::erf((delta + 0.5 * kPi) / lambda) - std::erf((delta - 0.5 * kPi) / lambda));
+    }
+    constexpr int n = 4096;
+    double inside = 0.0, all = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double x = -kPi + (i + 0.5) * 2.0 * kPi / n;
+        const double w = von_mises_weight(x, lambda);
+        all += w;
+        double d = x - delta;
+        d -= 2.0 * kPi * std::floor((d + kPi) / (2.0 * kPi));
+        if (std::abs(d) <= 0.5 * kPi) inside += w;
+    }
+    // The indicator makes the midpoint rule first order; refine the two edges with a fine local sum.
+    const double h = 2.0 * kPi / n;
+    double correction = 0.0;
+    for (double edge : {delta - 0.5 * kPi, delta + 0.5 * kPi}) {
+        const double cell0 = std::floor((edge + kPi) / h);
+        const double a = -kPi + cell0 * h, b = a + h;
+        const double mid = 0.5 * (a + b);
+        double md = mid - delta;
+        md -= 2.0 * kPi * std::floor((md + kPi) / (2.0 * kPi));
+        const bool mid_inside = std::abs(md) <= 0.5 * kPi;
+        constexpr int sub = 64;
+        double exact = 0.0;
+        for (int s = 0; s < sub; ++s) {
+            const double x = a + (s + 0.5) * h / sub;
+            double d = x - delta;
+            d -= 2.0 * kPi * std::floor((d + kPi) / (2.0 * kPi));
+            if (std::abs(d) <= 0.5 * kPi) exact += von_mises_weight(x, lambda) / sub;
+        }
+        correction += exact - (mid_inside ? von_mises_weight(mid, lambda) : 0.0);
+    }
+    return (inside + correction) / all;
+}
+
+LutSet LightingTables::set() const {
+    LutSet s;
+    s.images[int(Lut::lut_ck_lo)] = &ck_lo;
+    s.images[int(Lut::lut_ck_hi)] = &ck_hi;
+    s.images[int(Lut::lut_h_tt)] = &h_tt;
+    s.images[int(Lut::lut_h_trt)] = &h_trt;
+    s.images[int(Lut::lut_half_mass)] = &half_mass;
+    s.images[int(Lut::lut_fresnel_fit)] = &fresnel_fit;
+    return s;
+}
+
+LutSet MultipleScatteringTables::set() const {
+    LutSet s;
+    s.images[int(Lut::lut_ms_ab)] = &ab;
+    s.images[int(Lut::lut_ms_sat_delta)] = &sat_delta;
+    s.images[int(Lut::lut_ms_sat_sigma)] = &sat_sigma;
+    return s;
+}
+
+LightingTables build_lighting_tables() {
+    using namespace glsl;
+    const auto start = std::chrono::steady_clock::now();
+    LightingTables t;
+    t.ck_lo = LutImage(LUT_N_PHI, LUT_N_LAMBDA);
+    t.ck_hi = LutImage(LUT_N_PHI, LUT_N_LAMBDA);
+    t.half_mass = LutImage(LUT_N_PHI, LUT_N_LAMBDA);
+    parallel_rows(LUT_N_LAMBDA, [&](int y) {
+        const double lambda = lut_point_log(y, LUT_LAMBDA_MIN, LUT_LAMBDA_MAX, LUT_N_LAMBDA);
+        for (int x = 0; x < LUT_N_PHI; ++x) {
+            const double dphi = lut_point_lin(x, 0.0f, COIF_PI, LUT_N_PHI);
+            const auto c = ck_all(lambda, dphi);
+            t.ck_lo.at(x, y) = glm::vec4(c[0], c[1], c[2], c[3]);
+            t.ck_hi.at(x, y) = glm::vec4(c[4], c[5], c[6], 0.0);
+            t.half_mass.at(x, y) = glm::vec4(float(half_mass_direct(lambda, dphi)), 0.0f, 0.0f, 0.0f);
+        }
+    });
+    t.h_tt = LutImage(LUT_N_THETA_D, LUT_N_ETA);
+    t.h_trt = LutImage(LUT_N_THETA_D, LUT_N_ETA);
+    t.fresnel_fit = LutImage(2, LUT_N_ETA);
+    parallel_rows(LUT_N_ETA, [&](int y) {
+        const double eta = lut_point_log(y, LUT_ETA_MIN, LUT_ETA_MAX, LUT_N_ETA);
+        for (int x = 0; x < LUT_N_THETA_D; ++x) {
+            const double theta_d = lut_point_lin(x, 0.0f, COIF_HALF_PI, LUT_N_THETA_D);
+            const auto tt = h_all(false, eta, theta_d);
+            const auto trt = h_all(true, eta, theta_d);
+            t.h_tt.at(x, y) = glm::vec4(tt[0], tt[1], tt[2], 0.0);
+            t.h_trt.at(x, y) = glm::vec4(trt[0], trt[1], trt[2], 0.0);
+        }
+        const auto f = fresnel_fit_coefficients(eta);
+        t.fresnel_fit.at(0, y) = glm::vec4(f[0], f[1], f[2], f[3]);
+        t.fresnel_fit.at(1, y) = glm::vec4(f[4], f[5], 0.0, 0.0);
+    });
+    t.build_seconds = seconds_since(start);
+    return t;
+}
+
+const LightingTables& global_lighting_tables() {
+    static const LightingTables tables = build_lighting_tables();
+    return tables;
+}
+
+MultipleScatteringTables build_ms_tables(const glsl::HairParams& params, const glsl::LightingConfig& config) {
+    using namespace glsl;
+    const auto start = std::chrono::steady_clock::now();
+    LutBinding bind(global_lighting_tables().set());
+    vec4 f0123, f45;
+    srbf_point_setup(params, config, f0123, f45);
+    MultipleScatteringTables t;
+    t.ab = LutImage(LUT_N_MS, 1);
+    t.sat_delta = LutImage(LUT_N_MS, 1);
+    t.sat_sigma = LutImage(LUT_N_MS, 1);
+    std::vector<glm::dvec3> delta(LUT_N_MS), sigma(LUT_N_MS);
+    for (int i = 0; i < LUT_N_MS; ++i) {
+        const float x = lut_point_lin(i, -COIF_HALF_PI, COIF_HALF_PI, LUT_N_MS);
+        vec3 A_b, Delta_b, sigma_b;
+        zinke_terms(params, config, f0123, f45, x, A_b, Delta_b, sigma_b);
+        t.ab.at(i, 0) = glm::vec4(A_b, 0.0f);
+        delta[i] = glm::dvec3(Delta_b);
+        sigma[i] = glm::dvec3(sigma_b);
+    }
+    // 1D summed-area tables (000 eq. 31): running trapezoid integrals from θd = -π/2 at the nodes.
+    const double h = double(COIF_PI) / (LUT_N_MS - 1);
+    glm::dvec3 sd(0.0), ss(0.0);
+    for (int i = 0; i < LUT_N_MS; ++i) {
+        if (i > 0) {
+            sd += 0.5 * h * (delta[i - 1] + delta[i]);
+            ss += 0.5 * h * (sigma[i - 1] + sigma[i]);
+        }
+        t.sat_delta.at(i, 0) = glm::vec4(glm::vec3(sd), 0.0f);
+        t.sat_sigma.at(i, 0) = glm::vec4(glm::vec3(ss), 0.0f);
+    }
+    t.build_seconds = seconds_since(start);
+    return t;
+}
+
+}  // namespace coif::shading

@@ -1,0 +1,42 @@
+#pragma once
+// The precomputed tables of the SRBF lighting (layouts in shaders/lighting/luts.glsl), computed on the
+// CPU in double precision and stored as float RGBA images that online/ uploads as GL_RGBA32F textures.
+//   global (parameter-free, once per process): 𝒞_k (000 eq. 14), H_k^TT, H_k^TRT (eq. 19, 23), the
+//   half-circle mass of circular Gaussians (eq. 28) and the exact-Fresnel polynomial fit;
+//   per hair-parameter set: the dual-scattering 1D tables Ā_b, ∫Δ̄_b, ∫σ̄_b (000 §5, eq. 29-31).
+#include "shaders/glsl_prelude.h"
+#include "shaders/lut.h"
+
+namespace coif::glsl {
+struct HairParams;
+struct LightingConfig;
+}  // namespace coif::glsl
+
+namespace coif::shading {
+
+struct LightingTables {
+    LutImage ck_lo, ck_hi, h_tt, h_trt, half_mass, fresnel_fit;
+    double build_seconds = 0.0;  // wall time of build_lighting_tables()
+    LutSet set() const;
+};
+
+LightingTables build_lighting_tables();
+
+// Built on first use (thread-safe), then shared.
+const LightingTables& global_lighting_tables();
+
+struct MultipleScatteringTables {
+    LutImage ab, sat_delta, sat_sigma;
+    double build_seconds = 0.0;
+    LutSet set() const;
+};
+
+// The three 1D tables of one parameter set (needs the global tables bound or passed).
+MultipleScatteringTables build_ms_tables(const glsl::HairParams& params, const glsl::LightingConfig& config);
+
+// Exact references of table entries (double precision direct integration), for tests and checks.
+double ck_direct(int k, double lambda_p, double dphi);            // 𝒞_k / ∫g^c
+double h_direct(bool trt, int k, double eta, double theta_d);      // H_k^TT or H_k^TRT
+double half_mass_direct(double lambda, double delta);
+
+}  // namespace coif::shading
