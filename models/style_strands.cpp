@@ -1,0 +1,151 @@
+#include "models/style_strands.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
+
+#include "models/core/error.h"
+
+namespace coif {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTwoPi = 2.0 * kPi;
+
+// Piecewise-constant inverse CDF over bins of equal width on [0, 1): returns a position in [0, 1).
+double inverse_cdf(const std::vector<double>& w, double xi) {
+    double total = 0;
+    for (double x : w) total += x;
+    if (!(total > 0)) return xi;
+    double target = xi * total;
+    for (std::size_t b = 0; b < w.size(); ++b) {
+        if (target < w[b] || b + 1 == w.size()) {
+            const double f = w[b] > 0 ? std::clamp(target / w[b], 0.0, 1.0) : 0.5;
+            return (static_cast<double>(b) + f) / static_cast<double>(w.size());
+        }
+        target -= w[b];
+    }
+    return xi;
+}
+
+struct PlaneDensity {
+    int rings = 0, columns = 0;
+    std::vector<double> w;  // rings × columns, ρ·cell area
+    double count = 0;       // strands crossing the plane
+};
+
+std::vector<PlaneDensity> plane_densities(const HairStyle& style, const Cluster& proto) {
+    const DiskLayout& l = style.layout;
+    const std::vector<SectorDensity> grids = cluster_sector_densities(*proto.shape, l, *proto.density);
+    std::vector<PlaneDensity> out(static_cast<std::size_t>(l.s_t) + 1);
+    for (int i = 0; i <= l.s_t; ++i) {
+        PlaneDensity& p = out[static_cast<std::size_t>(i)];
+        p.rings = l.layers * l.grid_r;
+        p.columns = l.s_u * l.grid_s;
+        p.w.assign(static_cast<std::size_t>(p.rings) * p.columns, 0.0);
+        double mass = 0;
+        for (int j = 0; j < l.layers; ++j)
+            for (int k = 0; k < l.s_u; ++k) {
+                const SectorDensity& g = grids[l.sector_index(i, j, k)];
+                for (int r = 0; r < g.n_r; ++r)
+                    for (int s = 0; s < g.n_s; ++s) {
+                        const double m = std::max(0.0f, g.at(s, r)) * g.cell_area();
+                        p.w[static_cast<std::size_t>(j * l.grid_r + r) * p.columns + (k * l.grid_s + s)] = m;
+                        mass += m;
+                    }
+            }
+        p.count = mass / (kPi * l.gaussian_width * l.gaussian_width);
+    }
+    if (proto.density->kind == DensitySource::Kind::Strands) {
+        for (auto& p : out) p.count = 0;
+        for (const StrandRun& r : proto.density->strands)
+            for (std::size_t q = 0; q < r.vu.size(); ++q) out[static_cast<std::size_t>(r.first_plane) + q].count += proto.density->strand_weight;
+    }
+    return out;
+}
+
+glm::dvec2 sample_plane(const PlaneDensity& p, const DiskLayout& l, double xi_v, double xi_u) {
+    std::vector<double> ring(static_cast<std::size_t>(p.rings), 0.0);
+    for (int r = 0; r < p.rings; ++r)
+        for (int c = 0; c < p.columns; ++c) ring[static_cast<std::size_t>(r)] += p.w[static_cast<std::size_t>(r) * p.columns + c];
+    const double fr = inverse_cdf(ring, xi_v);
+    const int r = std::min(static_cast<int>(fr * p.rings), p.rings - 1);
+    std::vector<double> cols(p.w.begin() + static_cast<std::ptrdiff_t>(r) * p.columns, p.w.begin() + static_cast<std::ptrdiff_t>(r + 1) * p.columns);
+    const double fu = inverse_cdf(cols, xi_u);
+    return {l.core_radius + (1.0 - l.core_radius) * fr, kTwoPi * fu};
+}
+
+// A strand through (v, u) on consecutive planes first.., evaluated on the envelope and placed.
+void emit(Strands& out, const Cluster& c, const DiskLayout& l, int first, const std::vector<glm::dvec2>& vu, int sub) {
+    if (vu.size() < 2) return;
+    std::vector<glm::vec3> pts;
+    for (std::size_t q = 0; q + 1 < vu.size(); ++q) {
+        const double du = std::remainder(vu[q + 1].y - vu[q].y, kTwoPi);
+        for (int s = 0; s < sub || (q + 2 == vu.size() && s == sub); ++s) {
+            const double w = static_cast<double>(s) / sub;
+            const double t = l.plane_t(first + static_cast<int>(q)) + w / l.s_t;
+            const glm::dvec3 p = c.shape->point(t, vu[q].x + w * (vu[q + 1].x - vu[q].x), vu[q].y + w * du);
+            pts.emplace_back(c.placement.apply(p));
+        }
+    }
+    out.add_strand(pts);
+}
+
+}  // namespace
+
+Strands sample_strands(const HairStyle& style, const StrandSampling& o) {
+    Strands out;
+    out.offsets.push_back(0);
+    const DiskLayout& l = style.layout;
+    const int sub = std::max(1, o.points_per_hsv);
+    std::map<std::size_t, std::vector<PlaneDensity>> cache;
+    double total = 0;
+    if (o.from == StrandSampling::From::Density) {
+        for (const Cluster& c : style.clusters) {
+            auto it = cache.find(c.prototype);
+            if (it == cache.end()) it = cache.emplace(c.prototype, plane_densities(style, style.clusters[c.prototype])).first;
+            double n = 0;
+            for (const auto& p : it->second) n = std::max(n, p.count);
+            total += std::round(n);
+        }
+        if (total > o.max_strands)
+            throw Error({}, "export", "the style's densities call for " + std::to_string(static_cast<long long>(total)) +
+                                          " strands, more than the limit of " + std::to_string(static_cast<long long>(o.max_strands)));
+    }
+    for (std::size_t ci = 0; ci < style.clusters.size(); ++ci) {
+        const Cluster& c = style.clusters[ci];
+        if (o.from == StrandSampling::From::Members) {
+            if (c.density->kind != DensitySource::Kind::Strands) continue;
+            for (const StrandRun& r : c.density->strands) emit(out, c, l, r.first_plane, r.vu, sub);
+            continue;
+        }
+        const std::vector<PlaneDensity>& planes = cache.at(c.prototype);
+        double nmax = 0;
+        for (const auto& p : planes) nmax = std::max(nmax, p.count);
+        const int n = static_cast<int>(std::round(nmax));
+        std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + ci);
+        std::uniform_real_distribution<double> U(0, 1);
+        for (int j = 0; j < n; ++j) {
+            const double xi_v = U(rng), xi_u = U(rng);
+            int first = -1;
+            std::vector<glm::dvec2> vu;
+            for (int i = 0; i <= l.s_t; ++i) {
+                const bool present = j + 0.5 < planes[static_cast<std::size_t>(i)].count;
+                if (present) {
+                    if (first < 0) first = i;
+                    vu.push_back(sample_plane(planes[static_cast<std::size_t>(i)], l, xi_v, xi_u));
+                } else if (first >= 0) {
+                    break;
+                }
+            }
+            emit(out, c, l, first, vu, sub);
+        }
+    }
+    if (out.strand_count() == 0) out.offsets.clear();
+    return out;
+}
+
+}  // namespace coif

@@ -1,0 +1,281 @@
+// coif style import|inspect|export-strands — cluster hairstyles (JSON, models/hair_style.h).
+#include <chrono>
+#include <cstdio>
+#include <numbers>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "models/hair_style.h"
+#include "models/sector_density.h"
+#include "models/strands.h"
+#include "models/style_fit.h"
+#include "models/style_strands.h"
+#include "tools/assets.h"
+#include "tools/cli.h"
+
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// "@default" names the style embedded in the binary (tools/assets/default_style.json).
+constexpr const char* kDefaultStyleName = "@default";
+constexpr const char* kDefaultStyleAsset = "default_style.json";
+
+coif::HairStyle load_style(const std::string& path) {
+    if (path == kDefaultStyleName) {
+        const std::vector<std::byte> bytes = coif::asset_bytes(kDefaultStyleAsset);
+        return coif::parse_style(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                                 std::string("<embedded ") + kDefaultStyleAsset + ">");
+    }
+    return coif::read_style(path);
+}
+
+std::string orientation_words(const glm::dmat3& r) {
+    if (r == glm::dmat3(1.0)) return "unchanged (the hair already hangs along -y)";
+    const glm::dvec3 from = glm::transpose(r) * glm::dvec3(0, -1, 0);
+    char b[160];
+    std::snprintf(b, sizeof b, "rotated so that the file's (%.0f, %.0f, %.0f) hangs along -y (coif is y-up)", from.x, from.y, from.z);
+    return b;
+}
+
+json error_json(const coif::FitError& e) {
+    return {{"points", e.points},
+            {"inside_fraction", e.inside_fraction()},
+            {"rms_outside", e.rms_outside},
+            {"max_outside", e.max_outside},
+            {"strands", e.strands},
+            {"assigned", e.assigned},
+            {"assigned_share", e.assigned_share()}};
+}
+
+json counts_json(const coif::HairStyle& s) {
+    const coif::StyleCounts c = coif::style_counts(s);
+    return {{"clusters", c.clusters},
+            {"prototypes", c.prototypes},
+            {"instances", c.instances},
+            {"macro_clusters", c.macro_clusters},
+            {"macro_clusters_with_instances", c.shared_macro_clusters},
+            {"layers", c.layers},
+            {"hsvs", c.hsvs},
+            {"sectors", c.sectors},
+            {"stored_strands", c.stored_strands},
+            {"memory_bytes", {{"geometry", c.geometry_bytes}, {"density_grids", c.density_bytes}, {"layer_meshes", c.mesh_bytes}}}};
+}
+
+void add_style(CLI::App& root) {
+    CLI::App* style = coif::cli::noun(
+        root, "style",
+        "Cluster hairstyles (JSON): fit them to strand files, inspect them, turn them back into strands");
+
+    // ── import ──
+    struct ImportOptions {
+        std::string in, out, name;
+        coif::FitOptions fit;
+        std::vector<int> grid{8, 4};
+        bool no_orient = false, json = false;
+    };
+    auto io = std::make_shared<ImportOptions>();
+    io->fit.layout.gaussian_width = 0;  // automatic
+    CLI::App* imp = style->add_subcommand(
+        "import",
+        "Fit a cluster hairstyle to a strand file (.hair or .data): k-means clustering of the strands by root\n"
+        "position and shape, a least-squares B-spline trajectory per cluster, elliptic cross-sections A, B, θ\n"
+        "from the principal axes of the strands' crossings, sector densities from the member strands, and\n"
+        "macro-clusters (clusters whose envelopes match after a similarity alignment become instances).\n"
+        "Prints the fitting error: the share of strand points inside their cluster's envelope, the RMS distance\n"
+        "of the points outside to the envelope (in the file's units), and the share of strands assigned.\n"
+        "Strands that hang along -x or ±z (e.g. the CT2Hair-derived files) are rotated to hang along -y; the\n"
+        "rotation is recorded in the style's \"source\". Units are kept as in the file.");
+    imp->add_option("model", io->in, "Strand file to fit (.hair or .data)")->required()->check(CLI::ExistingFile);
+    imp->add_option("-o,--output", io->out, "Style file to write (JSON; written atomically)")->required();
+    imp->add_option("--clusters", io->fit.clusters, "Number of clusters N (capped at the strand count)")->capture_default_str()->check(CLI::Range(1, 100000));
+    imp->add_option("--layers", io->fit.layout.layers, "Layered shells L per cluster")->capture_default_str()->check(CLI::Range(1, coif::kMaxLayers));
+    imp->add_option("--s-t", io->fit.layout.s_t, "HSVs along each cluster (s_t + 1 sector planes)")->capture_default_str()->check(CLI::Range(1, 256));
+    imp->add_option("--s-u", io->fit.layout.s_u, "HSVs around each cluster")->capture_default_str()->check(CLI::Range(1, 256));
+    imp->add_option("--core-radius", io->fit.layout.core_radius, "Relative radius v of the transparent core, in [0, 1)")->capture_default_str()->check(CLI::Range(0.0, 0.99));
+    imp->add_option("--grid", io->grid, "Density grid cells per sector along s (track) and r (across)")->expected(2)->capture_default_str()->check(CLI::Range(1, coif::kMaxGridCells));
+    imp->add_option("--gaussian-width", io->fit.layout.gaussian_width,
+                    "Width λ of each strand's density Gaussian exp(-d²/λ²), in the file's units; 0 = the median distance "
+                    "between neighbouring roots")->capture_default_str()->check(CLI::Range(0.0, 1e9));
+    imp->add_option("--coverage", io->fit.coverage, "Share of strand crossings each fitted ellipse encloses, (0, 1]")->capture_default_str()->check(CLI::Range(0.01, 1.0));
+    imp->add_option("--macro-tolerance", io->fit.macro_tolerance,
+                    "Clusters whose envelopes match a prototype's within this fraction of their mean radius become its "
+                    "instances; 0 disables macro-clusters")->capture_default_str()->check(CLI::Range(0.0, 10.0));
+    imp->add_option("--store-every", io->fit.store_every,
+                    "Store every n-th member strand's crossings (each then counts n times): smaller files")->capture_default_str()->check(CLI::Range(1, 1000));
+    imp->add_option("--seed", io->fit.seed, "Seed of the k-means++ initialisation")->capture_default_str();
+    imp->add_option("--name", io->name, "Name written into the style (default: the model's file name)");
+    imp->add_flag("--no-orient", io->no_orient, "Keep the file's axes even if the hair does not hang along -y");
+    coif::cli::add_json_flag(imp, io->json);
+    coif::cli::examples(imp, "  coif style import ../shared/data/harolongo.data --clusters 64 -o harolongo64.json\n"
+                             "  coif style import ../shared/data/Bangs_100.hair --clusters 32 -o bangs.json --json");
+    imp->callback([io] {
+        const auto t0 = std::chrono::steady_clock::now();
+        coif::FitOptions fit = io->fit;
+        fit.layout.grid_s = io->grid[0];
+        fit.layout.grid_r = io->grid[1];
+        fit.orient_y_up = !io->no_orient;
+        fit.progress = !io->json;
+        const coif::Strands strands = coif::read_strands(io->in);
+        const double seconds_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        coif::FitReport report;
+        coif::HairStyle style = coif::fit_style(strands, fit, &report);
+        style.name = io->name.empty() ? fs::path(io->in).filename().string() + " (" + std::to_string(style.clusters.size()) + " clusters)" : io->name;
+        style.units = "as in the source file";
+        const coif::FitError& e = report.error;
+        const glm::dmat3& r = report.rotation;
+        style.source = {{"file", fs::path(io->in).filename().string()},
+                        {"strands", strands.strand_count()},
+                        {"points", strands.points.size()},
+                        {"rotation_applied", {{r[0][0], r[1][0], r[2][0]}, {r[0][1], r[1][1], r[2][1]}, {r[0][2], r[1][2], r[2][2]}}},
+                        {"fit", {{"clusters_requested", fit.clusters}, {"coverage", fit.coverage}, {"macro_tolerance", fit.macro_tolerance},
+                                 {"store_every", fit.store_every}, {"seed", fit.seed}}},
+                        {"fitting_error", error_json(e)}};
+        coif::write_style(io->out, style);
+        const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const coif::StyleCounts c = coif::style_counts(style);
+        if (io->json) {
+            coif::cli::print_json({{"model", io->in},
+                                   {"output", io->out},
+                                   {"orientation", orientation_words(r)},
+                                   {"gaussian_width", style.layout.gaussian_width},
+                                   {"counts", counts_json(style)},
+                                   {"fitting_error", error_json(e)},
+                                   {"seconds", {{"read", seconds_read}, {"clustering", report.seconds_clustering}, {"fitting", report.seconds_fitting},
+                                                {"error", report.seconds_error}, {"total", total}}}});
+            return;
+        }
+        std::printf("%s: %zu strands, %zu points -> %zu clusters (%zu prototypes; %zu instances in %zu macro-clusters)\n",
+                    io->in.c_str(), strands.strand_count(), strands.points.size(), c.clusters, c.prototypes, c.instances,
+                    c.shared_macro_clusters);
+        std::printf("  orientation      %s\n", orientation_words(r).c_str());
+        std::printf("  Gaussian width   %.4g (file units)\n", style.layout.gaussian_width);
+        std::printf("  fitting error    %.2f %% of points inside their cluster's envelope; RMS distance of the others %.4g "
+                    "(max %.4g, file units); %.2f %% of strands assigned\n",
+                    100 * e.inside_fraction(), e.rms_outside, e.max_outside, 100 * e.assigned_share());
+        std::printf("  time             read %.2f s, clustering %.2f s, fitting %.2f s, error %.2f s, total %.2f s\n", seconds_read,
+                    report.seconds_clustering, report.seconds_fitting, report.seconds_error, total);
+        std::printf("wrote %s (%llu bytes)\n", io->out.c_str(), static_cast<unsigned long long>(fs::file_size(io->out)));
+    });
+
+    // ── inspect ──
+    struct InspectOptions {
+        std::string file;
+        bool json = false;
+    };
+    auto in = std::make_shared<InspectOptions>();
+    CLI::App* inspect = style->add_subcommand(
+        "inspect",
+        "Read a style file, check it, and print its hierarchy (clusters, macro-clusters with their instances),\n"
+        "its generalized-disk layout (layers, HSVs, sectors) and the memory its geometry, density grids and layer\n"
+        "meshes take, with the mean density features of its sectors (004 §5.2). \"@default\" is the style built\n"
+        "into coif. A bad file gets an error naming the JSON path (exit code 1).");
+    inspect->add_option("style", in->file, "Style file (JSON), or @default")->required();
+    coif::cli::add_json_flag(inspect, in->json);
+    coif::cli::examples(inspect, "  coif style inspect harolongo64.json\n  coif style inspect @default --json");
+    inspect->callback([in] {
+        const coif::HairStyle s = load_style(in->file);
+        const coif::DiskLayout& l = s.layout;
+        // Mean features over all prototype sectors (instances share them).
+        double mean_rho = 0, mean_cs = 0, mean_cr = 0, max_rho = 0;
+        std::size_t sectors = 0;
+        for (const auto& c : s.clusters) {
+            if (c.instance_of) continue;
+            for (const coif::SectorDensity& d : coif::cluster_sector_densities(*c.shape, l, *c.density)) {
+                const auto f = coif::rich_features(d);
+                mean_rho += f[coif::kMeanDensity];
+                mean_cs += f[coif::kCentroidS];
+                mean_cr += f[coif::kCentroidR];
+                max_rho = std::max(max_rho, static_cast<double>(f[coif::kMeanDensity]));
+                ++sectors;
+            }
+        }
+        if (sectors) {
+            mean_rho /= static_cast<double>(sectors);
+            mean_cs /= static_cast<double>(sectors);
+            mean_cr /= static_cast<double>(sectors);
+        }
+        glm::dvec3 lo(1e300), hi(-1e300);
+        double length = 0;
+        for (const auto& c : s.clusters) {
+            for (int k = 0; k <= 8; ++k) {
+                const glm::dvec3 p = c.placement.apply(c.shape->position(k / 8.0));
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+            length += c.shape->length() * c.placement.scale;
+        }
+        json macros = json::array();
+        for (const auto& m : s.macro_clusters())
+            if (m.members.size() > 1) {
+                json names = json::array();
+                for (std::size_t k : m.members) names.push_back(s.clusters[k].name);
+                macros.push_back({{"prototype", s.clusters[m.prototype].name}, {"members", names}});
+            }
+        const json doc = {{"file", in->file},
+                          {"name", s.name},
+                          {"units", s.units},
+                          {"counts", counts_json(s)},
+                          {"layout", {{"core_radius", l.core_radius}, {"layers", l.layers}, {"s_t", l.s_t}, {"s_u", l.s_u},
+                                      {"grid", {l.grid_s, l.grid_r}}, {"mesh", {l.mesh_t, l.mesh_u}}, {"gaussian_width", l.gaussian_width},
+                                      {"hsvs_per_cluster", l.hsv_count()}, {"sectors_per_cluster", l.sector_count()}}},
+                          {"axis_bbox", {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}}},
+                          {"mean_cluster_length", length / static_cast<double>(s.clusters.size())},
+                          {"density", {{"mean", mean_rho}, {"max_sector_mean", max_rho}, {"mean_centroid_s", mean_cs}, {"mean_centroid_r", mean_cr}}},
+                          {"macro_clusters_with_instances", macros},
+                          {"source", s.source}};
+        if (in->json) {
+            coif::cli::print_json(doc);
+            return;
+        }
+        const coif::StyleCounts c = coif::style_counts(s);
+        std::printf("%s  (%s)\n", in->file.c_str(), s.name.c_str());
+        std::printf("  clusters          %zu  (%zu prototypes with geometry, %zu instances)\n", c.clusters, c.prototypes, c.instances);
+        std::printf("  macro-clusters    %zu  (%zu with instances)\n", c.macro_clusters, c.shared_macro_clusters);
+        std::printf("  layout            core v < %.3g, %d layers, s_t %d, s_u %d, grid %d x %d, mesh %d x %d per HSV, lambda %.4g\n",
+                    l.core_radius, l.layers, l.s_t, l.s_u, l.grid_s, l.grid_r, l.mesh_t, l.mesh_u, l.gaussian_width);
+        std::printf("  HSVs              %zu  (%zu per cluster)\n", c.hsvs, l.hsv_count());
+        std::printf("  sectors           %zu  (%zu per cluster; prototypes' grids shared by instances)\n", c.sectors, l.sector_count());
+        std::printf("  stored strands    %zu\n", c.stored_strands);
+        std::printf("  memory            geometry %.1f KiB, density grids %.1f KiB, layer meshes %.1f KiB\n", c.geometry_bytes / 1024.0,
+                    c.density_bytes / 1024.0, c.mesh_bytes / 1024.0);
+        std::printf("  axis bounding box min (%.3g, %.3g, %.3g) max (%.3g, %.3g, %.3g), mean cluster length %.4g\n", lo.x, lo.y, lo.z,
+                    hi.x, hi.y, hi.z, length / static_cast<double>(s.clusters.size()));
+        std::printf("  sector density    mean %.4g, largest sector mean %.4g, mean centroid s %.3f r %.3f (0.5 = centred)\n", mean_rho,
+                    max_rho, mean_cs, mean_cr);
+        for (const auto& m : macros) std::printf("  macro-cluster     %s: %s\n", m["prototype"].get<std::string>().c_str(), m["members"].dump().c_str());
+    });
+
+    // ── export-strands ──
+    struct ExportOptions {
+        std::string file, out, from = "density";
+        coif::StrandSampling sampling;
+    };
+    auto eo = std::make_shared<ExportOptions>();
+    CLI::App* exp = style->add_subcommand(
+        "export-strands",
+        "Sample strands inside the clusters of a style and write them as a Yuksel .hair file, so that strand\n"
+        "renderers (coif reference, other tools) can render the same hair. --from density (default) draws strands\n"
+        "from each cluster's sector densities; --from members replays the member strands a fitted style stored.");
+    exp->add_option("style", eo->file, "Style file (JSON), or @default")->required();
+    exp->add_option("-o,--output", eo->out, "The .hair file to write (atomically)")->required();
+    exp->add_option("--from", eo->from, "density | members")->capture_default_str()->check(CLI::IsMember({"density", "members"}));
+    exp->add_option("--points-per-hsv", eo->sampling.points_per_hsv, "Strand segments per HSV length")->capture_default_str()->check(CLI::Range(1, 64));
+    exp->add_option("--seed", eo->sampling.seed, "Seed of the sampling")->capture_default_str();
+    coif::cli::examples(exp, "  coif style export-strands harolongo64.json -o harolongo64.hair\n"
+                             "  coif style export-strands @default -o default.hair --from members");
+    exp->callback([eo] {
+        if (fs::path(eo->out).extension() != ".hair") throw coif::Error(eo->out, "", "the output must be a .hair file");
+        const coif::HairStyle s = load_style(eo->file);
+        coif::StrandSampling o = eo->sampling;
+        o.from = eo->from == "members" ? coif::StrandSampling::From::Members : coif::StrandSampling::From::Density;
+        const coif::Strands strands = coif::sample_strands(s, o);
+        if (strands.strand_count() == 0) throw coif::Error(eo->file, "", "the style yields no strands (" + eo->from + ")");
+        coif::write_hair(eo->out, strands);
+        std::fprintf(stderr, "wrote %s: %zu strands, %zu points\n", eo->out.c_str(), strands.strand_count(), strands.points.size());
+    });
+}
+
+COIF_REGISTER_COMMAND(20, add_style);
+
+}  // namespace
