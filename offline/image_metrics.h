@@ -1,0 +1,139 @@
+#pragma once
+// Image-quality numbers for comparing a render against a reference: PSNR, SSIM and FLIP, on linear
+// and on tone-mapped pixels, averaged over a mask of hair pixels, and a false-colour error picture.
+//
+// Which image is which: A is the reference, B the image under test (FLIP's exposure range for linear
+// images is taken from A; PSNR, SSIM and LDR-FLIP are symmetric).
+//
+// ── Tone-mapped ("display") pixels ──
+//   The PNG tone map of models/core/image.h: c' = sRGB_OETF(clamp(c · 2^exposure, 0, 1)), so a PNG read
+//   back (decoded sRGB → linear by read_image) tone-maps to exactly its own 8-bit values at exposure 0.
+//
+// ── Metrics (all on RGB; alpha is used only for the mask) ──
+//   PSNR  10 log10(peak² / MSE), MSE over the three channels of the masked pixels. Tone-mapped: peak = 1.
+//         Linear: peak = the largest channel value of A over the masked pixels (a linear image has no
+//         natural peak; this makes the number independent of the image's overall scale). Identical
+//         images give +∞ (printed "inf").
+//   SSIM  Wang, Bovik, Sheikh, Simoncelli 2004 ("Image quality assessment: from error visibility to
+//         structural similarity"): 11×11 Gaussian window of σ = 1.5 px, K1 = 0.01, K2 = 0.03, dynamic
+//         range L = the PSNR peak above; computed per channel on the whole image (borders clamped), the
+//         per-pixel map averaged over the channels, then over the mask.
+//   FLIP  LDR-FLIP of Andersson, Nilsson, Akenine-Möller, Oskarsson, Åström, Fairchild 2020 ("FLIP: A
+//         Difference Evaluator for Alternating Images", HPG 2020), implemented from the paper: CSF
+//         pre-filtering in YCxCz, Hunt-adjusted L*a*b*, HyAB colour difference (q_c = 0.7, p_c = 0.4,
+//         p_t = 0.95), edge/point feature difference (w = 0.082°, q_f = 0.5), ΔE = ΔE_c^(1 − ΔE_f); the
+//         viewer sees kFlipPixelsPerDegree pixels per degree (the paper's default: a 0.7 m wide 4K
+//         monitor at 0.7 m). On tone-mapped pixels this is the paper's LDR-FLIP on the sRGB images.
+//         On linear pixels it is HDR-FLIP (Andersson, Nilsson, Shirley, Akenine-Möller 2021, "Visualizing
+//         Errors in Rendered High Dynamic Range Images", same authors' extension to HDR): LDR-FLIP of the
+//         ACES-tone-mapped images at exposures from start to stop (start puts A's brightest masked pixel
+//         at 0.85 after tone mapping, stop puts A's median masked luminance there; max(2, ⌈stop − start⌉)
+//         exposures), per-pixel maximum.
+//
+// ── Mask of hair pixels (the metrics are means over it; counts are reported) ──
+//   Each image gets its own mask; the mask used is their union (a pixel that is hair in either image).
+//   alpha:      the image has a 4th channel not everywhere ≥ 1 − 1e-6; hair where α > kMaskAlphaThreshold.
+//   background: the four corner pixels agree (tone-mapped, within kBackgroundTolerance): that colour is
+//               the background; hair where any tone-mapped channel differs from it by more than
+//               kBackgroundTolerance (1.5 8-bit code values, so PNG rounding is not hair).
+//   auto (default): alpha when the image has informative alpha, else background; an image with neither
+//               contributes nothing; if neither image yields a mask, compare_images throws coif::Error.
+//   none:       every pixel.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "models/core/image.h"
+
+namespace coif {
+
+// FLIP's default observer: 0.7 m wide 3840-px display seen from 0.7 m, 3840 · π/180 ≈ 67.02 px/degree.
+inline constexpr double kFlipPixelsPerDegree = 3840.0 * 3.14159265358979323846 / 180.0;
+// A pixel is hair when at least 5 % of it is covered (alpha masks); thin fibres cover most hair pixels
+// only partly, so a 0.5 threshold would drop most of them.
+inline constexpr float kMaskAlphaThreshold = 0.05f;
+// 1.5 code values of an 8-bit sRGB image: tone-mapped differences at or below this are PNG rounding.
+inline constexpr float kBackgroundTolerance = 1.5f / 255.0f;
+
+enum class MaskMode { automatic, alpha, background, none };
+MaskMode parse_mask_mode(const std::string& text);  // "auto" | "alpha" | "background" | "none"
+
+struct HairMask {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> inside;  // width × height, 1 = hair
+    std::size_t count = 0;
+    std::string rule;                  // how it was made, in words (for reports)
+};
+
+// The mask of one image alone (see the header comment); `rule` says which rule applied, or is empty
+// when none did (auto mode only). Throws coif::Error when an explicit mode cannot be applied.
+HairMask image_hair_mask(const Image& image, MaskMode mode, float exposure, const std::string& name);
+// The union of both images' masks. Throws coif::Error if the sizes differ or no mask can be made.
+HairMask hair_mask(const Image& a, const Image& b, MaskMode mode, float exposure);
+
+// RGB planes of an image (channel-major, width × height each).
+struct Planes {
+    int width = 0, height = 0;
+    std::vector<float> c[3];
+};
+Planes linear_planes(const Image& image);
+// The PNG tone map of image.h applied to every channel (values in [0, 1], sRGB-encoded).
+Planes tone_mapped_planes(const Image& image, float exposure);
+
+// PSNR over the mask (+∞ when the masked pixels are identical).
+double psnr(const Planes& a, const Planes& b, const HairMask& mask, double peak);
+// Per-pixel SSIM (mean over the channels) with dynamic range `range`.
+std::vector<float> ssim_map(const Planes& a, const Planes& b, double range);
+// Per-pixel LDR-FLIP of two sRGB-encoded images with values in [0, 1] (reference, test).
+std::vector<float> flip_ldr_map(const Planes& reference_srgb, const Planes& test_srgb,
+                                double pixels_per_degree = kFlipPixelsPerDegree);
+
+struct HdrFlipExposures {
+    float start = 0, stop = 0;
+    int count = 1;
+};
+HdrFlipExposures hdr_flip_exposures(const Planes& reference_linear, const HairMask& mask);
+// Per-pixel HDR-FLIP of two linear images (max of LDR-FLIP over the exposures).
+std::vector<float> flip_hdr_map(const Planes& reference_linear, const Planes& test_linear, const HdrFlipExposures& e,
+                                double pixels_per_degree = kFlipPixelsPerDegree);
+
+double masked_mean(const std::vector<float>& map, const HairMask& mask);
+
+struct MetricSet {
+    double psnr_db = 0;   // +∞ for identical pixels
+    double ssim = 0;
+    double flip = 0;      // mean FLIP
+};
+
+struct CompareOptions {
+    MaskMode mask = MaskMode::automatic;
+    float exposure = 0.0f;   // stops, for the tone-mapped metrics
+    double pixels_per_degree = kFlipPixelsPerDegree;
+};
+
+struct CompareResult {
+    int width = 0, height = 0;
+    HairMask mask;
+    double linear_peak = 0;            // the linear PSNR/SSIM peak (max channel of A on the mask)
+    HdrFlipExposures hdr_exposures;
+    MetricSet linear;                  // on the mask
+    MetricSet tone_mapped;             // on the mask
+    MetricSet tone_mapped_all;         // every pixel, for reference
+    std::vector<float> flip_tone_mapped;  // the LDR-FLIP map behind tone_mapped.flip (for the heatmap)
+};
+
+// Compares A (reference) and B (test). Throws coif::Error (naming a_name/b_name) if the sizes differ,
+// a pixel is NaN/Inf, or no mask can be made.
+CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& options,
+                             const std::string& a_name = "A", const std::string& b_name = "B");
+
+// The false-colour error picture: per-pixel error in [0, 1] through a magma-like ramp (black → purple →
+// orange → pale yellow); pixels outside the mask are drawn at a quarter of their brightness. Returns a
+// linear RGB image whose PNG (write_image's sRGB tone map at exposure 0) shows the ramp's sRGB colours.
+Image error_heatmap(const std::vector<float>& error, const HairMask& mask);
+
+// "inf" for +∞, else the number with `decimals` decimals.
+std::string format_metric(double value, int decimals);
+
+}  // namespace coif

@@ -1,0 +1,178 @@
+// Image-quality metrics (offline/image_metrics.h) and `coif compare`.
+#include <cmath>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "models/core/error.h"
+#include "models/core/image.h"
+#include "offline/image_metrics.h"
+#include "tests/common/run.h"
+#include "tests/common/test_data.h"
+
+namespace coif {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// A small "hair-like" test picture: thin bright diagonal strokes over a uniform background, with alpha.
+Image strokes(int w, int h, unsigned seed, float noise) {
+    Image img(w, h, 4);
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> n(0.0f, noise);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float* p = img.at(x, y);
+            const bool hair = ((x + 2 * y) % 9) < 2 && x > 4 && x < w - 4 && y > 4 && y < h - 4;
+            const float v = hair ? 0.4f + 0.3f * std::sin(0.2f * x) : 0.05f;
+            p[0] = std::max(0.0f, v + (hair ? n(rng) : 0.0f));
+            p[1] = std::max(0.0f, 0.6f * v + (hair ? n(rng) : 0.0f));
+            p[2] = std::max(0.0f, 0.3f * v + (hair ? n(rng) : 0.0f));
+            p[3] = hair ? 1.0f : 0.0f;
+        }
+    return img;
+}
+
+Image uniform(int w, int h, float r, float g, float b) {
+    Image img(w, h, 3);
+    for (int i = 0; i < w * h; ++i) img.pixels[3 * i] = r, img.pixels[3 * i + 1] = g, img.pixels[3 * i + 2] = b;
+    return img;
+}
+
+TEST(Compare, IdenticalImagesGiveInfinitePsnrAndZeroFlip) {
+    const Image a = strokes(64, 48, 1, 0.05f);
+    const CompareResult r = compare_images(a, a, {});
+    // Exact: every difference is 0, so MSE = 0, SSIM = 1 up to float rounding of the window sums, and
+    // FLIP = ΔE_c^(1-ΔE_f) = 0^1 = 0.
+    EXPECT_TRUE(std::isinf(r.linear.psnr_db) && r.linear.psnr_db > 0);
+    EXPECT_TRUE(std::isinf(r.tone_mapped.psnr_db));
+    EXPECT_EQ(r.linear.flip, 0.0);
+    EXPECT_EQ(r.tone_mapped.flip, 0.0);
+    EXPECT_NEAR(r.linear.ssim, 1.0, 1e-5);
+    EXPECT_NEAR(r.tone_mapped.ssim, 1.0, 1e-5);
+    EXPECT_EQ(format_metric(r.linear.psnr_db, 2), "inf");
+    EXPECT_THAT(r.mask.rule, HasSubstr("alpha"));
+}
+
+TEST(Compare, PsnrMatchesItsDefinition) {
+    // A uniform offset d on every masked channel: tone-mapped-free linear PSNR = 10 log10(peak²/d²), exact
+    // up to float rounding (1e-4 dB).
+    Image a = strokes(32, 32, 2, 0.0f), b = a;
+    for (int i = 0; i < 32 * 32; ++i)
+        if (a.pixels[4 * i + 3] > 0)
+            for (int c = 0; c < 3; ++c) b.pixels[4 * i + c] += 0.01f;
+    const CompareResult r = compare_images(a, b, {});
+    EXPECT_NEAR(r.linear.psnr_db, 10.0 * std::log10(r.linear_peak * r.linear_peak / 1e-4), 1e-3);
+}
+
+TEST(Compare, FlipOfUniformBlackAgainstWhiteMatchesTheHandComputation) {
+    // No features in uniform images, so FLIP = ΔE_c: HyAB(black, white) in Hunt-adjusted L*a*b* is
+    // |ΔL*| = 100; cmax = HyAB(hunt(green), hunt(blue))^0.7 with CIELAB green (87.736, -86.179, 83.183) and blue
+    // (32.298, 79.194, -107.859) (D65, sRGB primaries). ΔE_c = 0.95 + 0.05 (100^0.7 - 0.4 cmax)/(0.6 cmax).
+    // The CIELAB values are given to 3 decimals, hence the 1e-4 tolerance.
+    const double gl = 87.736, ga = -86.179 * 0.87736, gb = 83.183 * 0.87736;
+    const double bl = 32.298, ba = 79.194 * 0.32298, bb = -107.859 * 0.32298;
+    const double cmax = std::pow(std::abs(gl - bl) + std::hypot(ga - ba, gb - bb), 0.7);
+    const double e = std::pow(100.0, 0.7);
+    const double expected = 0.95 + 0.05 * (e - 0.4 * cmax) / (0.6 * cmax);
+    const Planes black = tone_mapped_planes(uniform(40, 30, 0, 0, 0), 0), white = tone_mapped_planes(uniform(40, 30, 1, 1, 1), 0);
+    const std::vector<float> m = flip_ldr_map(black, white);
+    EXPECT_NEAR(m[0], expected, 1e-4);
+    EXPECT_NEAR(m[40 * 15 + 20], expected, 1e-4);
+    // Pure green against pure blue is FLIP's largest colour difference: exactly 1.
+    const auto g = tone_mapped_planes(uniform(40, 30, 0, 1, 0), 0), b = tone_mapped_planes(uniform(40, 30, 0, 0, 1), 0);
+    EXPECT_NEAR(flip_ldr_map(g, b)[600], 1.0, 1e-5);
+}
+
+TEST(Compare, LdrFlipIsSymmetricAndLocal) {
+    // LDR-FLIP has no preferred image: HyAB and the feature difference |‖f_A‖ − ‖f_B‖| are symmetric, so
+    // swapping A and B gives the same map (to float rounding, 1e-6). A change confined to one corner leaves
+    // pixels beyond the filters' reach (CSF radius 10 px, feature radius 9 px at 67 px/°) exactly at 0.
+    Image a = uniform(64, 32, 0.2f, 0.2f, 0.2f), b = a;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) b.at(x, y)[0] = 0.6f;
+    const auto ab = flip_ldr_map(tone_mapped_planes(a, 0), tone_mapped_planes(b, 0));
+    const auto ba = flip_ldr_map(tone_mapped_planes(b, 0), tone_mapped_planes(a, 0));
+    for (size_t i = 0; i < ab.size(); ++i) ASSERT_NEAR(ab[i], ba[i], 1e-6);
+    EXPECT_GT(ab[3 * 64 + 3], 0.1f);
+    EXPECT_EQ(ab[20 * 64 + 40], 0.0f);
+}
+
+TEST(Compare, MoreNoiseScoresWorse) {
+    const Image a = strokes(64, 48, 3, 0.0f);
+    const CompareResult small = compare_images(a, strokes(64, 48, 4, 0.02f), {});
+    const CompareResult large = compare_images(a, strokes(64, 48, 4, 0.1f), {});
+    EXPECT_GT(small.linear.psnr_db, large.linear.psnr_db);
+    EXPECT_GT(small.tone_mapped.ssim, large.tone_mapped.ssim);
+    EXPECT_LT(small.tone_mapped.flip, large.tone_mapped.flip);
+    EXPECT_LT(small.linear.flip, large.linear.flip);
+}
+
+TEST(Compare, BackgroundMaskFindsTheStrokes) {
+    Image a = strokes(48, 48, 5, 0.0f);
+    Image rgb(48, 48, 3);
+    for (int i = 0; i < 48 * 48; ++i)
+        for (int c = 0; c < 3; ++c) rgb.pixels[3 * i + c] = a.pixels[4 * i + c];
+    const HairMask by_alpha = image_hair_mask(a, MaskMode::alpha, 0, "a");
+    const HairMask by_background = image_hair_mask(rgb, MaskMode::background, 0, "a");
+    EXPECT_EQ(by_alpha.inside, by_background.inside);
+    EXPECT_GT(by_alpha.count, 100u);
+}
+
+TEST(Compare, BadInputIsAClearError) {
+    const Image a = strokes(32, 32, 1, 0.0f), b = strokes(32, 16, 1, 0.0f);
+    EXPECT_THROW(compare_images(a, b, {}), Error);
+    Image nan = a;
+    nan.pixels[5] = std::nanf("");
+    try {
+        compare_images(a, nan, {}, "a.exr", "b.exr");
+        FAIL() << "expected coif::Error";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("b.exr"));
+        EXPECT_THAT(e.what(), HasSubstr("NaN"));
+    }
+    // Neither image has alpha or a uniform background.
+    Image ramp(16, 16, 3);
+    for (size_t i = 0; i < ramp.pixels.size(); ++i) ramp.pixels[i] = float(i % 97) / 97.0f;
+    EXPECT_THROW(compare_images(ramp, ramp, {}), Error);
+    CompareOptions none;
+    none.mask = MaskMode::none;
+    EXPECT_NO_THROW(compare_images(ramp, ramp, none));
+}
+
+TEST(CompareCli, SelfComparePrintsInfAndZeroFlip) {
+    const fs::path dir = test::scratch_dir("compare-cli");
+    write_image(dir / "a.exr", strokes(48, 32, 7, 0.05f));
+    const test::RunResult r = test::run_coif("compare '" + (dir / "a.exr").string() + "' '" + (dir / "a.exr").string() +
+                                             "' --heatmap '" + (dir / "h.png").string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.out, HasSubstr("inf"));
+    EXPECT_THAT(r.out, HasSubstr("0.0000"));
+    EXPECT_TRUE(fs::exists(dir / "h.png"));
+    const test::RunResult j = test::run_coif("compare --json '" + (dir / "a.exr").string() + "' '" + (dir / "a.exr").string() + "'");
+    EXPECT_EQ(j.exit_code, 0) << j.err;
+    const auto doc = nlohmann::json::parse(j.out);
+    EXPECT_EQ(doc["linear"]["psnr_db"], "inf");
+    EXPECT_EQ(doc["tone_mapped"]["flip_mean"].get<double>(), 0.0);
+    fs::remove_all(dir);
+}
+
+TEST(CompareCli, MissingFileOrSizeMismatchExitsOneWithoutOutput) {
+    const fs::path dir = test::scratch_dir("compare-bad");
+    write_image(dir / "a.exr", strokes(48, 32, 7, 0.0f));
+    write_image(dir / "b.exr", strokes(32, 32, 7, 0.0f));
+    const test::RunResult missing = test::run_coif("compare '" + (dir / "a.exr").string() + "' '" + (dir / "nope.exr").string() +
+                                                   "' --heatmap '" + (dir / "h.png").string() + "'");
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_THAT(missing.err, HasSubstr("nope.exr"));
+    const test::RunResult size = test::run_coif("compare '" + (dir / "a.exr").string() + "' '" + (dir / "b.exr").string() +
+                                                "' --heatmap '" + (dir / "h.png").string() + "'");
+    EXPECT_EQ(size.exit_code, 1);
+    EXPECT_THAT(size.err, HasSubstr("sizes differ"));
+    EXPECT_FALSE(fs::exists(dir / "h.png"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace coif
