@@ -1,6 +1,8 @@
 #include "models/hair_style.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <map>
 #include <numbers>
@@ -17,11 +19,11 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr const char* kNonFinite = "\x01coif-non-finite";  // stands in for NaN/Infinity literals
+constexpr const char* kNonFinite = "__coif_non_finite_number__";  // stands in for NaN/Infinity literals
 
-// Replaces the non-standard literals NaN, Infinity, inf (optionally signed) outside strings by a
-// marker string, so that the validator can report them at their JSON path instead of failing
-// with a bare syntax error.
+// Replaces the non-standard literals NaN, Infinity, inf (optionally signed) and numbers that
+// overflow a double (1e999) outside strings by a marker string, so that the validator reports them
+// at their JSON path instead of failing with a bare syntax error.
 std::string mark_non_finite(std::string_view text) {
     std::string out;
     out.reserve(text.size());
@@ -40,6 +42,17 @@ std::string mark_non_finite(std::string_view text) {
             continue;
         }
         std::size_t j = i + ((c == '-' || c == '+') ? 1 : 0);
+        if (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) {
+            std::size_t e = j;
+            while (e < text.size() && (std::isdigit(static_cast<unsigned char>(text[e])) || text[e] == '.' || text[e] == 'e' ||
+                                       text[e] == 'E' || text[e] == '+' || text[e] == '-'))
+                ++e;
+            const std::string token(text.substr(i, e - i));
+            if (!std::isfinite(std::strtod(token.c_str(), nullptr))) out += std::string("\"") + kNonFinite + "\"";
+            else out += token;
+            i = e - 1;
+            continue;
+        }
         bool matched = false;
         for (const char* word : {"NaN", "nan", "Infinity", "infinity", "inf"}) {
             const std::size_t n = std::char_traits<char>::length(word);
@@ -344,6 +357,8 @@ HairStyle parse_style(std::string_view text, const fs::path& file) {
         doc = json::parse(mark_non_finite(text));
     } catch (const json::parse_error& e) {
         throw Error(file, "byte " + std::to_string(e.byte), std::string("not valid JSON: ") + e.what());
+    } catch (const json::exception& e) {
+        throw Error(file, "", std::string("not valid JSON: ") + e.what());
     }
     return style_from_json(doc, file);
 }

@@ -1,0 +1,118 @@
+// Fitting cluster hairstyles to strands (models/style_fit.h): a synthetic cluster with a known
+// envelope, the real Bangs model (fast), and harolongo at N = 128 (label slow).
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+#include <random>
+
+#include "models/style_fit.h"
+#include "models/style_strands.h"
+#include "tests/common/run.h"
+
+namespace coif {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(StyleFit, RecoversAKnownEllipticCluster) {
+    // 3000 straight strands hanging along −y, filling an ellipse of half-axes 2 and 1 turned by 30°.
+    Strands s;
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> U(0, 1);
+    const double A = 2.0, B = 1.0, th = kPi / 6;
+    for (int i = 0; i < 3000; ++i) {
+        const double v = std::sqrt(U(rng)), u = 2 * kPi * U(rng);
+        const double x = A * v * std::cos(u), z = B * v * std::sin(u);
+        const glm::dvec3 off(std::cos(th) * x - std::sin(th) * z, 0, std::sin(th) * x + std::cos(th) * z);
+        std::vector<glm::vec3> pts;
+        for (int k = 0; k <= 10; ++k) pts.emplace_back(off + glm::dvec3(0, -k, 0));
+        s.add_strand(pts);
+    }
+    FitOptions o;
+    o.clusters = 1;
+    o.coverage = 1.0;
+    o.progress = false;
+    o.layout.gaussian_width = 0.05;
+    FitReport rep;
+    const HairStyle style = fit_style(s, o, &rep);
+    ASSERT_EQ(style.clusters.size(), 1u);
+    const GeneralizedCylinder& c = *style.clusters[0].shape;
+    // 3000 samples of the disc: second moments known to ~2 % (1/√(2n) per axis), the enclosing
+    // scale from the extreme sample; 5 % on the axes, 3° on the orientation.
+    EXPECT_NEAR(std::max(c.a(0.5), c.b(0.5)), A, 0.05 * A);
+    EXPECT_NEAR(std::min(c.a(0.5), c.b(0.5)), B, 0.05 * B);
+    EXPECT_NEAR(c.length(), 10.0, 1e-3);
+    const auto axes = c.ellipse_axes(0.5);
+    const glm::dvec3 major = c.a(0.5) > c.b(0.5) ? axes[0] : axes[1];
+    EXPECT_GT(std::abs(glm::dot(major, glm::dvec3(std::cos(th), 0, std::sin(th)))), std::cos(3 * kPi / 180));
+    std::printf("synthetic: inside %.4f, RMS outside %.3g\n", rep.error.inside_fraction(), rep.error.rms_outside);
+    EXPECT_GT(rep.error.inside_fraction(), 0.97);
+    EXPECT_LT(rep.error.rms_outside, 0.05);  // what lies outside, lies just outside
+    EXPECT_EQ(rep.error.assigned_share(), 1.0);
+}
+
+TEST(StyleFit, BangsHangsDownAndFits) {
+    COIF_SHARED_DATA(path, "Bangs_100.hair");
+    const Strands s = read_strands(path);
+    FitOptions o;
+    o.clusters = 32;
+    o.progress = false;
+    o.layout.gaussian_width = 0;
+    FitReport rep;
+    const HairStyle style = fit_style(s, o, &rep);
+    EXPECT_EQ(style.clusters.size(), 32u);
+    // The file hangs along −x; the style hangs along −y (PROVENANCE.md).
+    EXPECT_LT(glm::length(rep.rotation * glm::dvec3(-1, 0, 0) - glm::dvec3(0, -1, 0)), 1e-6);
+    double down = 0;
+    for (const Cluster& c : style.clusters) down += glm::dot(c.placement.apply(c.shape->position(1)) - c.placement.apply(c.shape->position(0)), glm::dvec3(0, -1, 0)) > 0;
+    EXPECT_GE(down, 31);
+    std::printf("Bangs N=32: inside %.4f, RMS outside %.3g, assigned %.3f\n", rep.error.inside_fraction(), rep.error.rms_outside,
+                rep.error.assigned_share());
+    // Measured 0.86 for N = 32 (see the issue report); 0.8 leaves room for seed changes. A member
+    // whose strand crosses none of its cluster's planes near the axis is not assigned (≤ 2 %).
+    EXPECT_GT(rep.error.inside_fraction(), 0.8);
+    EXPECT_GE(rep.error.assigned_share(), 0.98);
+    // The style survives a JSON round trip, and its members come back as 100 strands or more (runs
+    // split where a strand misses a plane).
+    const HairStyle again = parse_style(style_text(style), "bangs.json");
+    StrandSampling so;
+    so.from = StrandSampling::From::Members;
+    EXPECT_GE(sample_strands(again, so).strand_count(), 100u);
+}
+
+TEST(StyleFit, ImportCommandPrintsTheFittingError) {
+    COIF_SHARED_DATA(path, "Bangs_100.data");
+    const auto dir = test::scratch_dir("style-import");
+    const test::RunResult r = test::run_coif("style import '" + path.string() + "' --clusters 8 -o '" + (dir / "b.json").string() + "' --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["counts"]["clusters"], 8);
+    EXPECT_GT(doc["fitting_error"]["inside_fraction"].get<double>(), 0.5);
+    const test::RunResult i = test::run_coif("style inspect '" + (dir / "b.json").string() + "' --json");
+    ASSERT_EQ(i.exit_code, 0) << i.err;
+    EXPECT_EQ(nlohmann::json::parse(i.out)["counts"]["hsvs"], 8 * 8 * 4 * 8);
+    const test::RunResult e = test::run_coif("style export-strands '" + (dir / "b.json").string() + "' -o '" + (dir / "b.hair").string() + "'");
+    ASSERT_EQ(e.exit_code, 0) << e.err;
+    EXPECT_GT(read_strands(dir / "b.hair").strand_count(), 50u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(StyleFit, SlowHarolongo128) {
+    COIF_SHARED_DATA(path, "harolongo.data");
+    const Strands s = read_strands(path);
+    FitOptions o;
+    o.clusters = 128;
+    o.progress = false;
+    o.layout.gaussian_width = 0;
+    FitReport rep;
+    const HairStyle style = fit_style(s, o, &rep);
+    std::printf("harolongo N=128: inside %.4f, RMS outside %.3g, assigned %.3f\n", rep.error.inside_fraction(),
+                rep.error.rms_outside, rep.error.assigned_share());
+    EXPECT_EQ(rep.rotation, glm::dmat3(1.0));  // already y-up
+    EXPECT_GT(rep.error.inside_fraction(), 0.85);  // measured 0.92
+    EXPECT_EQ(rep.error.assigned_share(), 1.0);
+    EXPECT_LT(rep.error.rms_outside, 1.0);  // cm; measured 0.35
+}
+
+}  // namespace
+}  // namespace coif
