@@ -83,6 +83,7 @@ LightingConfig default_config(int segments) {
     c.paper_schlick = false;
     c.paper_norm = false;
     c.paper_theta_gauss = false;
+    c.paper_tt = false;
     return c;
 }
 
@@ -91,6 +92,7 @@ LightingConfig paper_config(int segments) {
     c.paper_schlick = true;
     c.paper_norm = true;
     c.paper_theta_gauss = true;
+    c.paper_tt = true;
     return c;
 }
 

@@ -29,6 +29,7 @@ struct LightingConfig {
     bool paper_schlick;
     bool paper_norm;
     bool paper_theta_gauss;
+    bool paper_tt;           // 𝓝_TT from the single circular Gaussian alone (000) for every λ'
 };
 
 const int LIGHTING_MAX_SEGMENTS = 256;
@@ -116,6 +117,54 @@ COIF_FN void N_TT_fit(float eta, vec3 sigma_a, float theta_d, bool paper_norm, O
         if (lambda[c] > 100.0) b[c] = circ_fit_peak(energy[c], lambda[c], paper_norm);
         if (!(energy[c] > 0.0)) b[c] = 0.0;
     }
+}
+
+// ---- N_TT at one azimuth, and the hybrid inner integral (ours) -----------------------------------
+// One circular Gaussian cannot follow N_TT's shape (flat top, compact support |φ-π| <= π - 2 asin(1/η'),
+// a dip at π under strong absorption): pointwise it is off by 5-19 % (`coif lighting check`), and a
+// sharp light sees N_TT pointwise. For λ' <= 0.45 we therefore integrate the exact N_TT against the
+// light's azimuthal kernel with 6-point Gauss-Hermite (N_TT evaluated by inverting φ(h), no table);
+// above 0.65 the kernel smooths the shape error away and the Gaussian of 000 eq. 16 is used; between
+// the two they are blended linearly.
+
+// N_TT(θd, ψ) exactly: the single root h of φ(1,h) = ψ (φ decreases monotonically in h) by Newton
+// steps safeguarded with bisection, then ½ A_TT(h) / |dφ/dh| (000 eq. 9, 15).
+COIF_FN vec3 N_TT_pointwise(float eta, vec3 sigma_a, float theta_d, float psi) {
+    float eta_p = eta_prime(eta, theta_d);
+    float d = wrap_pi(psi - COIF_PI);
+    float reach = COIF_PI - 2.0 * safe_asin(1.0 / eta_p);
+    if (abs(d) >= reach) return vec3(0.0);
+    float lo = -1.0;
+    float hi = 1.0;
+    float h = clamp(d / (2.0 / eta_p - 2.0), -0.999, 0.999);
+    for (int it = 0; it < 10; ++it) {
+        float f = 2.0 * safe_asin(h / eta_p) - 2.0 * safe_asin(h) - d;   // decreasing in h
+        if (f > 0.0) lo = h; else hi = h;
+        float df = 2.0 / sqrt(eta_p * eta_p - h * h) - 2.0 / sqrt(max(1.0 - h * h, 1e-12));
+        float hn = h - f / min(df, -1e-6);
+        h = (hn >= lo && hn <= hi) ? hn : 0.5 * (lo + hi);
+    }
+    float df = 2.0 - 2.0 * sqrt(max(1.0 - h * h, 1e-12)) / sqrt(eta_p * eta_p - h * h);
+    // |dφ/dh| = 2/sqrt(1-h²) - 2/sqrt(η'²-h²); dividing by it as (…)·sqrt(1-h²) keeps h → ±1 finite.
+    vec3 a = attenuation_A(LOBE_TT, eta, sigma_a, theta_d, h);
+    return 0.5 * a * sqrt(max(1.0 - h * h, 0.0)) / max(df, 1e-6);
+}
+
+const float TT_HYBRID_LO = 0.45;
+const float TT_HYBRID_HI = 0.65;
+
+// ∫ g^c(x; 0, λ') N_TT(Δ - x) dx by 6-point Gauss-Hermite in x = λ' t (nodes ±t_i, weights w_i),
+// with the ratio g^c/g folded into the weights.
+COIF_FN vec3 N_TT_inner_pointwise(float eta, vec3 sigma_a, float theta_d, float lambda_p, float dphi) {
+    vec3 acc = vec3(0.0);
+    for (int i = 0; i < 3; ++i) {
+        float t = i == 0 ? 0.436077411927617 : (i == 1 ? 1.335849074013697 : 2.350604973674492);
+        float w = i == 0 ? 0.724629595224392 : (i == 1 ? 0.157067320322856 : 0.00453000990550885);
+        float x = lambda_p * t;
+        float ratio = w * exp(t * t) * circ_gauss(x, 0.0, lambda_p);
+        acc += ratio * (N_TT_pointwise(eta, sigma_a, theta_d, dphi - x) + N_TT_pointwise(eta, sigma_a, theta_d, dphi + x));
+    }
+    return lambda_p * acc;
 }
 
 // ---- N_TRT as three or one circular Gaussians (000 eq. 20-23, §4.2.4) -------------------------------
@@ -217,11 +266,16 @@ COIF_FN vec3 srbf_N_inner(int lobe, HairParams hp, LightingConfig cfg, vec4 f012
         return vec3(N_R_inner(c_lo, c_hi, lambda_p, dphi));
     }
     if (lobe == LOBE_TT) {
-        vec3 b;
-        vec3 lam;
-        N_TT_fit(hp.eta, hp.sigma_a, theta_d, cfg.paper_norm, b, lam);
+        float blend = cfg.paper_tt ? 1.0 : smoothstep(TT_HYBRID_LO, TT_HYBRID_HI, lambda_p);
         vec3 r = vec3(0.0);
-        for (int c = 0; c < 3; ++c) r[c] = b[c] * circ_product_integral(lambda_p, lam[c], dphi - COIF_PI, cfg.paper_norm);
+        if (blend > 0.0) {
+            vec3 b;
+            vec3 lam;
+            N_TT_fit(hp.eta, hp.sigma_a, theta_d, cfg.paper_norm, b, lam);
+            for (int c = 0; c < 3; ++c) r[c] = b[c] * circ_product_integral(lambda_p, lam[c], dphi - COIF_PI, cfg.paper_norm);
+        }
+        if (blend < 1.0)
+            r = mix(N_TT_inner_pointwise(hp.eta, hp.sigma_a, theta_d, lambda_p, dphi), r, blend);
         return r;
     }
     float eta_e = hp.eta;
