@@ -21,8 +21,8 @@ void add_render(CLI::App& root) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* render = root.add_subcommand(
         "render",
-        "Render one image of a hair scene headless (EGL, no window needed). With no arguments it renders the\n"
-        "embedded default scene. Current state: strands are drawn as GL lines with a simple Kajiya-Kay preview\n"
+        "Render one image of a hair scene, headless (the embedded default scene when given no arguments)\n"
+        "Rendering goes through EGL, so no window or display is needed. Current state: strands are drawn as GL lines with a simple Kajiya-Kay preview\n"
         "shading (the SATF shell renderer with SRBF Marschner lighting is not built yet); the image metadata says so.\n"
         "Output: .png (tone-mapped sRGB: exposure, clip, sRGB curve) or .exr (linear half float); written atomically.");
     o->scene.add_to(render);

@@ -30,7 +30,8 @@ void add_view(CLI::App& root) {
     auto o = std::make_shared<ViewOptions>();
     CLI::App* view = root.add_subcommand(
         "view",
-        "Open the interactive viewer in a window (needs a display; use `xvfb-run coif view` without one).\n"
+        "Open the interactive viewer in a window\n"
+        "It needs a display: use `xvfb-run -a coif view` without one.\n"
         "Drag with the left mouse button to orbit, scroll to zoom, Esc or Q to quit.\n"
         "Current state: strands drawn with the preview shading (see `coif render --help`).");
     o->scene.add_to(view);

@@ -2,6 +2,8 @@
 // dispatches and turns errors into messages and exit codes: 0 ok, 1 failure, 2 bad usage.
 #include <exception>
 #include <iostream>
+#include <memory>
+#include <sstream>
 
 #include "models/core/error.h"
 #include "online/gl_context.h"
@@ -18,6 +20,18 @@ std::vector<std::byte> asset_bytes(std::string_view path) {
 }  // namespace coif
 
 namespace {
+
+// Lists each subcommand by the first line of its description; the whole text is shown by the
+// subcommand's own --help.
+class Formatter : public CLI::Formatter {
+public:
+    std::string make_subcommand(const CLI::App* sub) const override {
+        std::stringstream out;
+        const std::string& d = sub->get_description();
+        CLI::detail::format_help(out, sub->get_display_name(true), d.substr(0, d.find('\n')), column_width_);
+        return out.str();
+    }
+};
 
 std::string version_text() {
     std::string text = "coif " COIF_VERSION "\n";
@@ -42,6 +56,7 @@ int main(int argc, char** argv) {
         "Run `coif <command> --help` for each command. Images: .exr is linear, .png is tone-mapped sRGB.",
         "coif"};
     app.option_defaults()->always_capture_default();
+    app.formatter(std::make_shared<Formatter>());
     app.set_version_flag("--version", [] { return version_text(); }, "Print the version and the OpenGL renderer, then exit");
     app.require_subcommand(1);
     app.footer(
