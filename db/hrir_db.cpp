@@ -455,7 +455,7 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
     }
     const bool shard = o.shard.count > 1;
     write_database(out, p, first, report.count, shard, features, records);
-    fs::remove_all(parts, ec);
+    if (!o.keep_parts) fs::remove_all(parts, ec);
     return report;
 }
 

@@ -135,6 +135,7 @@ struct BuildOptions {
     int threads = 1;
     bool resume = false;
     std::size_t chunk = 64;  // sectors per resumable chunk (progress: coif::Progress, quiet if set so)
+    bool keep_parts = false; // keep FILE.parts/ after success (tests of --resume)
 };
 struct BuildReport {
     std::uint64_t first = 0, count = 0, reused = 0;
