@@ -205,7 +205,7 @@ std::shared_ptr<DensitySource> read_density(const Reader& rd, const json& d, con
     return out;
 }
 
-json round_json(double x, int digits) {
+nlohmann::ordered_json round_json(double x, int digits) {
     if (digits <= 0 || x == 0) return x;
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.*g", digits, x);
@@ -370,7 +370,8 @@ HairStyle read_style(const fs::path& path) {
 
 // ───────────────────────────── writing ─────────────────────────────
 
-json style_to_json(const HairStyle& style) {
+nlohmann::ordered_json style_to_json(const HairStyle& style) {
+    using json = nlohmann::ordered_json;  // fields in a readable order: format and version first
     constexpr int kDigits = 7;  // control points and crossings: float precision is plenty
     const DiskLayout& l = style.layout;
     json doc = json::object();
@@ -378,7 +379,7 @@ json style_to_json(const HairStyle& style) {
     doc["version"] = kStyleVersion;
     if (!style.name.empty()) doc["name"] = style.name;
     if (!style.units.empty()) doc["units"] = style.units;
-    if (!style.source.empty()) doc["source"] = style.source;
+    if (!style.source.empty()) doc["source"] = json(style.source);
     doc["layout"] = {{"core_radius", l.core_radius}, {"layers", l.layers}, {"s_t", l.s_t}, {"s_u", l.s_u},
                      {"grid", {l.grid_s, l.grid_r}}, {"mesh", {l.mesh_t, l.mesh_u}}, {"gaussian_width", round_json(l.gaussian_width, kDigits)}};
     json clusters = json::array();
@@ -446,8 +447,8 @@ json style_to_json(const HairStyle& style) {
 
 std::string style_text(const HairStyle& style) {
     // One cluster per line keeps a large file readable and diffable; the header is indented.
-    json doc = style_to_json(style);
-    json clusters = std::move(doc["clusters"]);
+    nlohmann::ordered_json doc = style_to_json(style);
+    nlohmann::ordered_json clusters = std::move(doc["clusters"]);
     doc.erase("clusters");
     std::string head = doc.dump(2);
     head.pop_back();  // the closing brace

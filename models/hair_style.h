@@ -122,7 +122,7 @@ struct HairStyle {
 HairStyle read_style(const std::filesystem::path& path);
 HairStyle parse_style(std::string_view text, const std::filesystem::path& name);
 HairStyle style_from_json(const nlohmann::json& doc, const std::filesystem::path& name);
-nlohmann::json style_to_json(const HairStyle& style);
+nlohmann::ordered_json style_to_json(const HairStyle& style);
 // Atomic; numbers rounded to `digits` significant digits where it keeps files small (control points,
 // crossings); 0 keeps full precision.
 void write_style(const std::filesystem::path& path, const HairStyle& style);

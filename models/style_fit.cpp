@@ -19,6 +19,9 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kRepresentativeSamples = 48;  // points of a cluster's mean curve
 constexpr double kMaxCrossingV = 4.0;       // crossings farther out than this (relative) are not the cluster's
+// A member's crossing of the plane at t is searched within ±kArcWindow·(longest member) of arc length
+// t·(longest member) from its root: the mean curve is at most ~25 % shorter than wavy members.
+constexpr double kArcWindow = 0.25;
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -132,15 +135,19 @@ std::vector<int> kmeans(const std::vector<std::vector<double>>& f, int k, int it
     return label;
 }
 
-// The crossing of a polyline with the plane through `o` with normal `t`, nearest to `o`; near the
-// ends, an end point within `end_slack` of the plane counts (roots sit on the root plane).
-std::optional<glm::dvec3> plane_crossing(const Polyline& l, const glm::dvec3& o, const glm::dvec3& t, double end_slack) {
+// The crossing of a polyline with the plane through `o` with normal `t`, nearest to `o`, among the
+// segments within `window` of arc length `arc` from the root (a wavy strand crosses the infinite plane
+// far from the cluster too); near the ends, an end point within `end_slack` of the plane counts
+// (roots sit on the root plane).
+std::optional<glm::dvec3> plane_crossing(const Polyline& l, const glm::dvec3& o, const glm::dvec3& t, double end_slack,
+                                         double arc, double window) {
     std::optional<glm::dvec3> best;
     double bd = std::numeric_limits<double>::max();
     double prev = glm::dot(l.p[0] - o, t);
     for (std::size_t k = 1; k < l.p.size(); ++k) {
         const double cur = glm::dot(l.p[k] - o, t);
-        if ((prev <= 0 && cur > 0) || (prev >= 0 && cur < 0) || cur == 0) {
+        const bool near = l.s[k] >= arc - window && l.s[k - 1] <= arc + window;
+        if (near && ((prev <= 0 && cur > 0) || (prev >= 0 && cur < 0) || cur == 0)) {
             const double w = prev == cur ? 0.0 : prev / (prev - cur);
             const glm::dvec3 x = l.p[k - 1] + w * (l.p[k] - l.p[k - 1]);
             const double d = glm::dot(x - o, x - o);
@@ -152,8 +159,10 @@ std::optional<glm::dvec3> plane_crossing(const Polyline& l, const glm::dvec3& o,
         prev = cur;
     }
     if (!best) {
-        for (const glm::dvec3& e : {l.p.front(), l.p.back()})
-            if (std::abs(glm::dot(e - o, t)) <= end_slack) {
+        for (int end = 0; end < 2; ++end) {
+            const glm::dvec3& e = end == 0 ? l.p.front() : l.p.back();
+            const bool in_window = end == 0 ? arc - window <= 0 : arc + window >= l.length();
+            if (in_window && std::abs(glm::dot(e - o, t)) <= end_slack) {
                 const glm::dvec3 x = e - glm::dot(e - o, t) * t;
                 const double d = glm::dot(x - o, x - o);
                 if (d < bd) {
@@ -161,6 +170,7 @@ std::optional<glm::dvec3> plane_crossing(const Polyline& l, const glm::dvec3& o,
                     best = x;
                 }
             }
+        }
     }
     return best;
 }
@@ -240,7 +250,7 @@ FittedCluster fit_cluster(const std::vector<Polyline>& lines, std::vector<std::s
         const Frame f = axis.frame(t);
         std::vector<glm::dvec2> pts;
         for (std::size_t m : fc.members)
-            if (auto c = plane_crossing(lines[m], o3, f.tangent, slack)) pts.emplace_back(glm::dot(*c - o3, f.normal), glm::dot(*c - o3, f.binormal));
+            if (auto c = plane_crossing(lines[m], o3, f.tangent, slack, t * lmax, kArcWindow * lmax)) pts.emplace_back(glm::dot(*c - o3, f.normal), glm::dot(*c - o3, f.binormal));
         if (pts.empty()) continue;
         double mxx = 0, myy = 0, mxy = 0;
         for (const auto& p : pts) {
@@ -314,7 +324,7 @@ FittedCluster fit_cluster(const std::vector<Polyline>& lines, std::vector<std::s
         const auto e = fc.shape->ellipse_axes(t);
         const double A = fc.shape->a(t), B = fc.shape->b(t);
         for (std::size_t m = 0; m < fc.members.size(); ++m) {
-            const auto c = plane_crossing(lines[fc.members[m]], o3, T, slack);
+            const auto c = plane_crossing(lines[fc.members[m]], o3, T, slack, t * lmax, kArcWindow * lmax);
             if (!c) continue;
             const double a = glm::dot(*c - o3, e[0]) / A, b = glm::dot(*c - o3, e[1]) / B;
             const double v = std::sqrt(a * a + b * b);

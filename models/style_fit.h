@@ -49,7 +49,7 @@ struct FitOptions {
     int trajectory_control_points = 8;
     int profile_control_points = 6;   // A, B, θ
     double coverage = 0.98;           // share of crossings inside the ellipse at each fitting plane
-    double macro_tolerance = 0.1;     // fraction of the mean radius; 0 disables macro-clusters
+    double macro_tolerance = 0.25;    // fraction of the mean radius; 0 disables macro-clusters
     int kmeans_iterations = 40;
     std::uint32_t seed = 1;
     int store_every = 1;              // keep every n-th member's crossings (strand_weight n)
