@@ -214,6 +214,51 @@ void inspect_command(const std::string& file, const std::string& map_path, bool 
                                                     coif::checksum_hex(set.source->checksum) + " in " + file + ")");
 }
 
+
+// coif bench env: the issue-7 table (fit error, energy error and time for several N, every map given).
+struct BenchOptions {
+    std::vector<std::string> maps;
+    std::vector<int> lights{10, 20, 40, 80};
+    std::vector<int> fit_widths{coif::kDefaultSrbfFitWidth};
+    coif::SrbfFitSettings settings;
+    bool json = false;
+};
+
+void bench_command(const BenchOptions& o) {
+    nlohmann::json rows = nlohmann::json::array();
+    if (!o.json)
+        std::printf("%-36s %5s %9s %12s %12s %10s %7s %6s\n", "map", "N", "fit grid", "L2 err full", "L2 err grid",
+                    "energy err", "iters", "s");
+    for (const std::string& path : o.maps) {
+        coif::EnvMapLoadInfo info;
+        const coif::EnvMap map = coif::load_envmap(path, &info);
+        for (int width : o.fit_widths)
+            for (int n : o.lights) {
+                coif::SrbfFitSettings s = o.settings;
+                s.lights = n;
+                s.fit_width = std::min(width, map.width);
+                const coif::SrbfFitRecord f = coif::fit_srbf_lights(map, s).record;
+                if (o.json) {
+                    nlohmann::json row = record_json(f);
+                    row["map"] = path;
+                    rows.push_back(row);
+                    continue;
+                }
+                char grid[32];
+                std::snprintf(grid, sizeof grid, "%dx%d", f.fit_width, f.fit_width / 2);
+                std::printf("%-36s %5d %9s %12.4f %12.4f %+9.2f%% %7d %6.2f\n",
+                            fs::path(path).filename().string().c_str(), n, grid, f.relative_l2_error,
+                            f.relative_l2_error_fit_grid, 100 * f.energy_error, f.iterations, f.seconds);
+                std::fflush(stdout);
+            }
+    }
+    if (o.json) coif::cli::print_json(rows);
+    else
+        std::printf("\nL2 err = solid-angle-weighted relative L2 error of the RGB radiance (full = against the full-resolution\n"
+                    "map at its pixel centres; grid = against the box-filtered fit grid the solver saw); energy err = relative\n"
+                    "error of the luminous energy (integral of Y over the sphere); s = seconds of one fit on one core.\n");
+}
+
 void add_env(CLI::App& root) {
     CLI::App* env = coif::cli::noun(
         root, "env",
@@ -271,6 +316,50 @@ void add_env(CLI::App& root) {
     coif::cli::examples(inspect, "  coif env inspect courtyard.json\n"
                                  "  coif env inspect courtyard.json --map ../shared/data/blender_studiolight_courtyard.exr --json");
     inspect->callback([io] { inspect_command(io->file, io->map, io->json); });
+
+    struct DownsampleOptions {
+        std::string map, output;
+        int width = 256;
+    };
+    auto dso = std::make_shared<DownsampleOptions>();
+    CLI::App* downsample = env->add_subcommand(
+        "downsample",
+        "Write a smaller copy of an equirectangular map: box-filtered over solid angle, so the integral of L over\n"
+        "the sphere is unchanged; the same validation as `env fit` (tiny DWAB negatives clamped to 0).\n"
+        "Output .hdr (RGBE), .exr (half float) or .png (tone-mapped preview), written atomically.");
+    downsample->add_option("map", dso->map, "Equirectangular map (.hdr, .exr)")->required()->check(CLI::ExistingFile);
+    downsample->add_option("--width", dso->width, "Width of the copy in pixels (even; height = width / 2)");
+    downsample->add_option("-o,--output", dso->output, "File to write")->required();
+    coif::cli::examples(downsample, "  coif env downsample ../shared/data/blender_studiolight_courtyard.exr --width 256 "
+                                    "-o tools/assets/default_env.hdr");
+    downsample->callback([dso] {
+        coif::EnvMapLoadInfo info;
+        const coif::EnvMap map = coif::load_envmap(dso->map, &info);
+        for (const std::string& w : info.warnings) std::fprintf(stderr, "coif: warning: %s\n", w.c_str());
+        const coif::EnvMap small = coif::downsample_envmap(map, dso->width);
+        coif::WriteOptions wo;
+        wo.exposure = coif::envmap_preview_exposure(small);
+        wo.description = "coif env downsample of " + fs::path(dso->map).filename().string() + " (" +
+                         std::to_string(map.width) + "x" + std::to_string(map.height) + ")";
+        coif::write_image(dso->output, coif::envmap_to_image(small), wo);
+        std::fprintf(stderr, "wrote %s (%dx%d)\n", dso->output.c_str(), small.width, small.height);
+    });
+
+    auto bo = std::make_shared<BenchOptions>();
+    CLI::App* bench = coif::cli::noun(root, "bench", "Benchmarks that print figures (JSON with --json, else a table)");
+    CLI::App* benv = bench->add_subcommand(
+        "env",
+        "Fit SRBF lights to every map given for each N (and each fit-grid width) and print a table of the relative\n"
+        "L2 error (full map and fit grid), the energy error, iterations and fitting time (one core).");
+    benv->add_option("maps", bo->maps, "Equirectangular maps (.hdr, .exr)")->required()->check(CLI::ExistingFile);
+    benv->add_option("-n,--lights", bo->lights, "Light counts N to fit")->delimiter(',');
+    benv->add_option("--fit-width", bo->fit_widths, "Fit-grid widths to try (the downsampling study)")->delimiter(',');
+    benv->add_option("--seed", bo->settings.seed, "Seed of the k-means++ initialisation");
+    benv->add_option("--max-iterations", bo->settings.max_iterations, "Levenberg-Marquardt iteration limit");
+    coif::cli::add_json_flag(benv, bo->json);
+    coif::cli::examples(benv, "  coif bench env ../shared/data/*.exr ../shared/data/*.hdr\n"
+                              "  coif bench env ../shared/data/blender_studiolight_city.exr -n 40 --fit-width 32,64,128 --json");
+    benv->callback([bo] { bench_command(*bo); });
 }
 
 COIF_REGISTER_COMMAND(30, add_env);

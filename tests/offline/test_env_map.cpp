@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/atomic_file.h"
+#include "models/core/checksum.h"
 #include "models/core/error.h"
 #include "offline/envmap.h"
 #include "offline/srbf_lights.h"
@@ -263,6 +264,24 @@ TEST(SrbfLightsRotation, RotatingTheLightsRotatesTheEnvironment) {
     EXPECT_LT(glm::length(quarter[0].omega - glm::vec3(0, 0, -1)), 1e-6f);
     const glm::dvec3 E0 = coif::srbf_lights_energy(lights), E1 = coif::srbf_lights_energy(rotated);
     EXPECT_EQ(E0, E1);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(DefaultEnvironment, ShippedLightsBelongToTheShippedMap) {
+    const auto dir = coif::test::source_dir() / "tools" / "assets";
+    const coif::SrbfLightSet set = coif::read_srbf_lights(dir / "default_lights.json");
+    ASSERT_TRUE(set.source && set.fit);
+    EXPECT_EQ(set.source->checksum, coif::checksum(coif::read_file_bytes(dir / "default_env.hdr")));
+    const EnvMap map = coif::load_envmap(dir / "default_env.hdr");
+    EXPECT_EQ(map.width, set.source->width);
+    // The recorded energy error is the one the lights really have (float re-evaluation: 1e-4).
+    const glm::dvec3 E_fit = coif::srbf_lights_energy(set.lights), E_map = coif::envmap_energy(map);
+    EXPECT_NEAR((coif::luminance(E_fit) - coif::luminance(E_map)) / coif::luminance(E_map), set.fit->energy_error, 1e-4);
+    // ≤ 200 KB so that it can live in the repository and the binary.
+    EXPECT_LE(std::filesystem::file_size(dir / "default_env.hdr"), 200u * 1024u);
 }
 
 }  // namespace
