@@ -475,10 +475,17 @@ CompareResult compare_images(const Image& a, const Image& b, const CompareOption
         throw Error(a_name + " vs " + b_name, e.place(), e.problem());
     }
     const Planes la = linear_planes(a), lb = linear_planes(b);
-    double peak = 0;
+    // The linear peak: the 99th percentile of A's brightest channel over the mask, so that a few
+    // fireflies of a noisy reference do not set the scale.
+    std::vector<float> brightest;
     for (size_t i = 0; i < r.mask.inside.size(); ++i)
-        if (r.mask.inside[i])
-            for (int c = 0; c < 3; ++c) peak = std::max(peak, double(la.c[c][i]));
+        if (r.mask.inside[i]) brightest.push_back(std::max({la.c[0][i], la.c[1][i], la.c[2][i]}));
+    double peak = 0;
+    if (!brightest.empty()) {
+        const size_t k = std::min(brightest.size() - 1, static_cast<size_t>(kLinearPeakPercentile * double(brightest.size())));
+        std::nth_element(brightest.begin(), brightest.begin() + static_cast<std::ptrdiff_t>(k), brightest.end());
+        peak = brightest[k];
+    }
     r.linear_peak = peak > 0 ? peak : 1.0;
     r.linear.psnr_db = psnr(la, lb, r.mask, r.linear_peak);
     r.linear.ssim = masked_mean(ssim_map(la, lb, r.linear_peak), r.mask);

@@ -11,9 +11,10 @@
 //
 // ── Metrics (all on RGB; alpha is used only for the mask) ──
 //   PSNR  10 log10(peak² / MSE), MSE over the three channels of the masked pixels. Tone-mapped: peak = 1.
-//         Linear: peak = the largest channel value of A over the masked pixels (a linear image has no
-//         natural peak; this makes the number independent of the image's overall scale). Identical
-//         images give +∞ (printed "inf").
+//         Linear: peak = the 99th percentile over the masked pixels of A's largest channel (a linear image
+//         has no natural peak; this makes the number independent of the image's overall scale, and the
+//         percentile keeps a few fireflies of a noisy reference from setting it). Identical images give
+//         +∞ (printed "inf").
 //   SSIM  Wang, Bovik, Sheikh, Simoncelli 2004 ("Image quality assessment: from error visibility to
 //         structural similarity"): 11×11 Gaussian window of σ = 1.5 px, K1 = 0.01, K2 = 0.03, dynamic
 //         range L = the PSNR peak above; computed per channel on the whole image (borders clamped), the
@@ -55,6 +56,8 @@ inline constexpr double kFlipPixelsPerDegree = 3840.0 * 3.14159265358979323846 /
 inline constexpr float kMaskAlphaThreshold = 0.05f;
 // 1.5 code values of an 8-bit sRGB image: tone-mapped differences at or below this are PNG rounding.
 inline constexpr float kBackgroundTolerance = 1.5f / 255.0f;
+// Percentile of A's masked pixels that sets the linear PSNR/SSIM peak.
+inline constexpr double kLinearPeakPercentile = 0.99;
 
 enum class MaskMode { automatic, alpha, background, none };
 MaskMode parse_mask_mode(const std::string& text);  // "auto" | "alpha" | "background" | "none"
@@ -115,7 +118,7 @@ struct CompareOptions {
 struct CompareResult {
     int width = 0, height = 0;
     HairMask mask;
-    double linear_peak = 0;            // the linear PSNR/SSIM peak (max channel of A on the mask)
+    double linear_peak = 0;            // the linear PSNR/SSIM peak (99th percentile of A's max channel on the mask)
     HdrFlipExposures hdr_exposures;
     MetricSet linear;                  // on the mask
     MetricSet tone_mapped;             // on the mask

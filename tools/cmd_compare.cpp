@@ -32,7 +32,7 @@ void add_compare(CLI::App& root) {
         "compare",
         "Image-quality numbers of image B (the test) against image A (the reference), over the pixels that\n"
         "show hair:\n"
-        "  PSNR  in dB (\"inf\" for identical pixels); linear: peak = A's largest masked channel value; tone-mapped: peak 1\n"
+        "  PSNR  in dB (\"inf\" for identical pixels); linear: peak = 99th percentile of A's brightest channel on the mask; tone-mapped: peak 1\n"
         "  SSIM  Wang et al. 2004, 11x11 Gaussian window (sigma 1.5 px), mean over RGB\n"
         "  FLIP  mean of the FLIP error map (Andersson et al. 2020, implemented here from the paper; 0 = identical,\n"
         "        1 = maximal): LDR-FLIP on the tone-mapped images, HDR-FLIP (2021) on the linear ones\n"

@@ -1,0 +1,108 @@
+#include "tools/reference_options.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "offline/envmap.h"
+#include "offline/srbf_lights.h"
+
+namespace coif::cli {
+namespace {
+
+glm::vec3 rgb(const std::vector<float>& v, const std::string& option) {
+    if (v.size() != 3) throw Error::parameter("option " + option, "needs three numbers R G B");
+    const glm::vec3 c(v[0], v[1], v[2]);
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(c[i])) throw Error::parameter("option " + option, "must be finite numbers");
+    return c;
+}
+
+void finite(const std::optional<float>& v, const std::string& option) {
+    if (v && !std::isfinite(*v)) throw Error::parameter("option " + option, "must be a finite number");
+}
+
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+}  // namespace
+
+void ReferenceCliOptions::add_to(CLI::App* app) {
+    app->add_option("--env", env, "Equirectangular environment map (.exr, .hdr) lighting the hair, importance-sampled from its pixels");
+    app->add_option("--lights", lights, "SRBF lights file (from `coif env fit`) lighting the hair instead of a map: Σ L_j G_j(ω)");
+    app->add_option("--env-constant", env_constant, "Constant environment radiance R G B (the default lighting is 1 1 1)")->expected(3);
+    app->add_option("--eta", eta, "Index of refraction η of the fibre (default 1.55)");
+    app->add_option("--sigma-a", sigma_a, "Absorption σa per unit fibre RADIUS, R G B (default: brown, 0.432 0.612 0.98)")->expected(3);
+    app->add_option("--alpha-r", alpha_r_deg, "Longitudinal shift α_R in degrees (α_TT = -α_R/2, α_TRT = -3α_R/2; default -7.5)");
+    app->add_option("--beta-r", beta_r_deg, "Longitudinal width β_R in degrees, 000's bandwidth (β_TT = β_R/2, β_TRT = 2β_R; default 7.5)");
+    app->add_option("--ecc", ecc_a, "Eccentricity a of the fibre cross-section (1 = round; 0.7072..1.4142; default 1)");
+    app->add_option("--wc", w_c_deg, "Azimuthal width w_c of the TRT glints in degrees (default 8.6 = 0.15 rad)");
+    app->add_option("--spp", settings.samples_per_pixel, "Samples (camera paths) per pixel")->check(CLI::Range(1, kMaxReferenceSpp));
+    app->add_option("--max-depth", settings.max_depth,
+                    "Most scattering events per path: 1 = single scattering with ray-traced shadows; more = multiple "
+                    "scattering between fibres")
+        ->check(CLI::Range(1, kMaxReferenceDepth));
+    app->add_option("--seed", settings.seed, "Random seed; the same seed gives the same image on any thread count");
+    app->add_option("--threads", settings.threads, "Worker threads (0 = every hardware thread)")->check(CLI::Range(0, 4096));
+    app->add_option("--radius", settings.fiber_radius,
+                    "Fibre radius in scene units (0 = auto: 1e-3 of the strands' bounding-box diagonal, ~0.8 px at the default framing)");
+    app->add_option("--background", background, "Background colour R G B, linear (default 0.05 0.05 0.06, as coif render)")->expected(3);
+    app->add_flag("--background-env", background_env, "Show the environment where no fibre is hit");
+    app->add_flag("--alpha", settings.alpha, "Write straight-alpha RGBA: A = fibre coverage, RGB = hair colour alone (no background)");
+}
+
+shading::HairParams ReferenceCliOptions::hair_params() const {
+    finite(eta, "--eta");
+    finite(alpha_r_deg, "--alpha-r");
+    finite(beta_r_deg, "--beta-r");
+    finite(ecc_a, "--ecc");
+    finite(w_c_deg, "--wc");
+    const shading::HairParams d = shading::default_hair_params();
+    const glm::vec3 sa = sigma_a.empty() ? d.sigma_a : rgb(sigma_a, "--sigma-a");
+    shading::HairParams p = shading::linked_hair_params(
+        eta.value_or(d.eta), sa, alpha_r_deg ? float(radians(*alpha_r_deg)) : d.alpha_R,
+        beta_r_deg ? float(radians(*beta_r_deg)) : d.beta_R, ecc_a.value_or(d.ecc_a), w_c_deg ? float(radians(*w_c_deg)) : d.w_c);
+    shading::validate(p, "hair parameters (--eta, --sigma-a, --alpha-r, --beta-r, --ecc, --wc)");
+    return p;
+}
+
+ReferenceEnvironment ReferenceCliOptions::environment() const {
+    const int given = int(!env.empty()) + int(!lights.empty()) + int(!env_constant.empty());
+    if (given > 1) throw Error::parameter("options --env, --lights, --env-constant", "give at most one light source");
+    if (!env.empty()) return ReferenceEnvironment::from_map(load_envmap(env), env);
+    if (!lights.empty()) return ReferenceEnvironment::from_srbf(read_srbf_lights(lights).lights, lights);
+    return ReferenceEnvironment::constant(env_constant.empty() ? glm::vec3(1.0f) : rgb(env_constant, "--env-constant"));
+}
+
+ReferenceSettings ReferenceCliOptions::reference_settings() const {
+    ReferenceSettings s = settings;
+    if (!background.empty()) s.background = rgb(background, "--background");
+    s.background_env = background_env;
+    validate(s);
+    return s;
+}
+
+std::string ReferenceCliOptions::lighting_args() const {
+    std::ostringstream o;
+    if (!env.empty()) o << " --env " << quote(env);
+    if (!lights.empty()) o << " --lights " << quote(lights);
+    if (env_constant.size() == 3) o << " --env-constant " << env_constant[0] << ' ' << env_constant[1] << ' ' << env_constant[2];
+    return o.str();
+}
+
+std::string ReferenceCliOptions::hair_args() const {
+    std::ostringstream o;
+    o.precision(9);
+    if (eta) o << " --eta " << *eta;
+    if (sigma_a.size() == 3) o << " --sigma-a " << sigma_a[0] << ' ' << sigma_a[1] << ' ' << sigma_a[2];
+    if (alpha_r_deg) o << " --alpha-r " << *alpha_r_deg;
+    if (beta_r_deg) o << " --beta-r " << *beta_r_deg;
+    if (ecc_a) o << " --ecc " << *ecc_a;
+    if (w_c_deg) o << " --wc " << *w_c_deg;
+    return o.str();
+}
+
+}  // namespace coif::cli

@@ -1,0 +1,37 @@
+#pragma once
+// Options of `coif reference` that `coif bench quality` shares: hair scattering parameters, lighting and
+// path-tracing settings. Degrees at the interface, radians in the code (DESIGN.md).
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "offline/reference.h"
+#include "shaders/lighting.h"
+#include "tools/cli.h"
+
+namespace coif::cli {
+
+struct ReferenceCliOptions {
+    // Lighting: at most one of these; none = a constant white environment of radiance 1.
+    std::string env;                 // equirectangular .exr/.hdr map
+    std::string lights;              // SRBF lights JSON (coif env fit)
+    std::vector<float> env_constant; // R G B
+    // Hair (shading::default_hair_params unless given).
+    std::optional<float> eta, alpha_r_deg, beta_r_deg, ecc_a, w_c_deg;
+    std::vector<float> sigma_a;      // R G B, per unit fibre radius
+    // Path tracing.
+    ReferenceSettings settings;
+    std::vector<float> background;   // R G B
+    bool background_env = false;
+
+    void add_to(CLI::App* app);
+    shading::HairParams hair_params() const;  // validated (coif::Error naming the option)
+    ReferenceEnvironment environment() const;
+    ReferenceSettings reference_settings() const;
+    // The options as command-line text (for `coif bench quality`, which runs `coif reference`).
+    std::string lighting_args() const;
+    std::string hair_args() const;
+};
+
+}  // namespace coif::cli
