@@ -12,23 +12,14 @@
 #include "models/style_strands.h"
 #include "tools/assets.h"
 #include "tools/cli.h"
+#include "tools/scene_options.h"
 
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// "@default" names the style embedded in the binary (tools/assets/default_style.json).
-constexpr const char* kDefaultStyleName = "@default";
-constexpr const char* kDefaultStyleAsset = "default_style.json";
-
-coif::HairStyle load_style(const std::string& path) {
-    if (path == kDefaultStyleName) {
-        const std::vector<std::byte> bytes = coif::asset_bytes(kDefaultStyleAsset);
-        return coif::parse_style(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                                 std::string("<embedded ") + kDefaultStyleAsset + ">");
-    }
-    return coif::read_style(path);
-}
+using coif::cli::kDefaultStyleName;
+using coif::cli::load_style;
 
 std::string orientation_words(const glm::dmat3& r) {
     if (r == glm::dmat3(1.0)) return "unchanged (the hair already hangs along -y)";

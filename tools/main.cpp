@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.footer(
         "\nExamples:\n"
-        "  coif render -o hair.png                 render the embedded default scene\n"
+        "  coif render -o hair.png                 render the embedded default scene (default style)\n"
         "  coif hair inspect model.hair            strand counts, lengths, bounding box\n"
         "  coif hair convert model.data model.hair convert a USC-HairSalon file to Yuksel's .hair\n\n"
         "Exit status: 0 success, 1 failure (message on stderr), 2 bad usage.");

@@ -1,6 +1,7 @@
 #include "tools/scene_options.h"
 
 #include "models/core/error.h"
+#include "models/style_strands.h"
 #include "tools/assets.h"
 
 namespace coif::cli {
@@ -8,8 +9,19 @@ namespace coif::cli {
 // Largest image side the commands accept (the GL target may allow less; it is checked too).
 constexpr int kMaxRenderSide = 16384;
 
+HairStyle load_style(const std::string& path) {
+    if (path == kDefaultStyleName) {
+        constexpr const char* kAsset = "default_style.json";
+        const std::vector<std::byte> bytes = asset_bytes(kAsset);
+        return parse_style(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                           std::string("<embedded ") + kAsset + ">");
+    }
+    return read_style(path);
+}
+
 void SceneOptions::add_to(CLI::App* app) {
-    app->add_option("--strands", strands, "Strand file to draw (.hair or .data); default: the embedded default hairstyle's strands");
+    app->add_option("--style", style, "Cluster hairstyle (JSON) to draw, or @default for the embedded one");
+    app->add_option("--strands", strands, "Draw this strand file (.hair or .data) instead of a style");
     app->add_option("--width", width, "Image width in pixels")->check(CLI::Range(1, kMaxRenderSide));
     app->add_option("--height", height, "Image height in pixels")->check(CLI::Range(1, kMaxRenderSide));
     app->add_option("--azimuth", azimuth_deg, "Camera azimuth about +y in degrees, 0 = looking from +z");
@@ -19,9 +31,11 @@ void SceneOptions::add_to(CLI::App* app) {
 }
 
 Strands SceneOptions::load_strands(std::string* label) const {
-    Strands s = strands.empty() ? parse_hair(asset_bytes("default_strands.hair"), "<embedded default_strands.hair>")
-                                : read_strands(strands);
-    if (label) *label = strands.empty() ? "embedded default strands (harolongo subsample)" : strands;
+    Strands s = strands.empty() ? sample_strands(load_style(style), StrandSampling{}) : read_strands(strands);
+    if (label)
+        *label = !strands.empty() ? strands
+               : style == kDefaultStyleName ? "strands sampled from the embedded default style (harolongo, 64 clusters)"
+                                            : "strands sampled from " + style;
     if (!keep_axes) {
         const glm::mat3 r = hang_axis_rotation(strand_stats(s));
         for (auto& p : s.points) p = r * p;
