@@ -59,7 +59,7 @@ struct MarschnerTable;
 // The exact Marschner model of the lighting module (R + TT + TRT, eccentricity, exact Fresnel, σa per
 // unit radius) for one parameter set: S_t = M_t(θh) N_t(θd, φ) / cos² θd (000 eq. 6) with M_t the module's
 // M_lobe and N_t its exact shading::reference::N_exact, sampled once on a grid at construction (a few
-// second on 2 cores) and interpolated (see reference_fiber.cpp for the grid and why).
+// seconds on 2 cores) and interpolated (see reference_fiber.cpp for the grid and why).
 class MarschnerFiber final : public FiberBsdf {
 public:
     explicit MarschnerFiber(const shading::HairParams& params);  // validates (coif::Error)
