@@ -90,6 +90,23 @@ std::vector<SrbfLight> rotate_srbf_lights_y(std::span<const SrbfLight> lights, f
     return rotate_srbf_lights(lights, rotation);
 }
 
+nlohmann::ordered_json srbf_fit_record_json(const SrbfFitRecord& f) {
+    return {{"lights", f.lights},
+            {"seed", f.seed},
+            {"fit_width", f.fit_width},
+            {"supersampling", f.supersampling},
+            {"lambda_min", f.lambda_min},
+            {"lambda_max", f.lambda_max},
+            {"max_iterations", f.max_iterations},
+            {"iterations", f.iterations},
+            {"termination", f.termination},
+            {"seconds", f.seconds},
+            {"relative_l2_error", f.relative_l2_error},
+            {"relative_l2_error_fit_grid", f.relative_l2_error_fit_grid},
+            {"energy_error", f.energy_error},
+            {"energy_error_rgb", vec_json(f.energy_error_rgb)}};
+}
+
 std::string srbf_lights_to_json(const SrbfLightSet& set) {
     ojson j;
     j["format"] = kFormat;
@@ -101,23 +118,7 @@ std::string srbf_lights_to_json(const SrbfLightSet& set) {
                        {"width", set.source->width},
                        {"height", set.source->height}};
     }
-    if (set.fit) {
-        const SrbfFitRecord& f = *set.fit;
-        j["fit"] = {{"lights", f.lights},
-                    {"seed", f.seed},
-                    {"fit_width", f.fit_width},
-                    {"supersampling", f.supersampling},
-                    {"lambda_min", f.lambda_min},
-                    {"lambda_max", f.lambda_max},
-                    {"max_iterations", f.max_iterations},
-                    {"iterations", f.iterations},
-                    {"termination", f.termination},
-                    {"seconds", f.seconds},
-                    {"relative_l2_error", f.relative_l2_error},
-                    {"relative_l2_error_fit_grid", f.relative_l2_error_fit_grid},
-                    {"energy_error", f.energy_error},
-                    {"energy_error_rgb", vec_json(f.energy_error_rgb)}};
-    }
+    if (set.fit) j["fit"] = srbf_fit_record_json(*set.fit);
     ojson lights = ojson::array();
     for (const SrbfLight& light : set.lights)
         lights.push_back({{"L", vec_json(light.L)}, {"omega", vec_json(light.omega)}, {"lambda", light.lambda}});

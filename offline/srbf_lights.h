@@ -23,6 +23,7 @@
 // checksum 16 hex digits. Anything else is a coif::Error naming the JSON pointer. "fit" is optional
 // (hand-written light sets need not have one); "source" is optional likewise.
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <optional>
 #include <span>
@@ -90,6 +91,8 @@ std::vector<SrbfLight> rotate_srbf_lights_y(std::span<const SrbfLight> lights, f
 
 // JSON text of a light set (see the header comment), and the file forms (write is atomic).
 std::string srbf_lights_to_json(const SrbfLightSet& set);
+// The "fit" object of a lights file (settings and measured errors of a fit), for files and --json output.
+nlohmann::ordered_json srbf_fit_record_json(const SrbfFitRecord& fit);
 SrbfLightSet srbf_lights_from_json(std::string_view text, const std::filesystem::path& source);
 void write_srbf_lights(const std::filesystem::path& path, const SrbfLightSet& set);
 SrbfLightSet read_srbf_lights(const std::filesystem::path& path);

@@ -22,22 +22,7 @@ constexpr int kPreviewWidth = 512;
 
 nlohmann::json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
-nlohmann::json record_json(const coif::SrbfFitRecord& f) {
-    return {{"lights", f.lights},
-            {"seed", f.seed},
-            {"fit_width", f.fit_width},
-            {"supersampling", f.supersampling},
-            {"lambda_min", f.lambda_min},
-            {"lambda_max", f.lambda_max},
-            {"max_iterations", f.max_iterations},
-            {"iterations", f.iterations},
-            {"termination", f.termination},
-            {"seconds", f.seconds},
-            {"relative_l2_error", f.relative_l2_error},
-            {"relative_l2_error_fit_grid", f.relative_l2_error_fit_grid},
-            {"energy_error", f.energy_error},
-            {"energy_error_rgb", vec_json(f.energy_error_rgb)}};
-}
+nlohmann::json record_json(const coif::SrbfFitRecord& f) { return nlohmann::json(coif::srbf_fit_record_json(f)); }
 
 void check_output_folder(const fs::path& path, const char* option) {
     const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
