@@ -8,7 +8,8 @@
 // (the response per unit light energy), so that configurations whose reference is ~0 (a light far
 // from every lobe) do not dominate with meaningless relative errors, and a sharp light counts as
 // much as a broad one of the same energy. The weighted median/p95 are the values below which half /
-// 95 % of the total weight lies. Unweighted figures are printed beside them.
+// 95 % of the total weight lies. Unweighted figures (and the max) are printed beside them, over the
+// configurations whose weight is at least 1 % of the mean.
 #include <cstdint>
 #include <functional>
 #include <string>

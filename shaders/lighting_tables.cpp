@@ -87,7 +87,7 @@ std::array<double, 6> fresnel_fit_coefficients(double eta) {
     for (int i = 0; i < samples; ++i) {
         const double mu = 0.5 - 0.5 * std::cos(kPi * (i + 0.5) / samples);  // Chebyshev nodes
         const double F = glsl::fresnel_dielectric(float(eta), float(mu));
-        const double w = 1.0 / (F * F);
+        const double w = 1.0 / F;  // between absolute and relative: N_R needs both ends
         double p[6];
         p[0] = 1.0;
         for (int k = 1; k < 6; ++k) p[k] = p[k - 1] * mu;

@@ -111,7 +111,7 @@ glm::dvec3 h_integral(int lobe, const HairParams& p, double eta, double theta_d,
     return 0.5 * dg * acc;
 }
 
-int steps_for(double slope, double width) { return std::clamp(int(std::ceil(kPi * slope / (0.5 * width))), 256, 60000); }
+int steps_for(double slope, double width) { return std::clamp(int(std::ceil(kPi * slope / (0.25 * width))), 512, 60000); }
 
 // N_TRT roughened, at one azimuth, for index `eta`.
 glm::dvec3 trt_rough(const HairParams& p, double eta, double theta_d, double phi) {
@@ -318,6 +318,8 @@ ZinkeTable zinke_table(const HairParams& p, int points) {
                 }
             }
             const double var = 0.5 * beta * beta;
+            f = glm::max(f, glm::dvec3(0.0)) + 1e-12;  // the same floor as zinke_terms (grazing θd)
+            b = glm::max(b, glm::dvec3(0.0)) + 1e-12;
             af += f;
             ab += b;
             alf += f * alpha;
@@ -327,10 +329,10 @@ ZinkeTable zinke_table(const HairParams& p, int points) {
         }
         t.a_f[k] = af;
         t.a_b[k] = ab;
-        t.alpha_f[k] = alf / glm::max(af, glm::dvec3(1e-300));
-        t.alpha_b[k] = alb / glm::max(ab, glm::dvec3(1e-300));
-        t.beta_f2[k] = bf / glm::max(af, glm::dvec3(1e-300));
-        t.beta_b2[k] = bb / glm::max(ab, glm::dvec3(1e-300));
+        t.alpha_f[k] = alf / af;
+        t.alpha_b[k] = alb / ab;
+        t.beta_f2[k] = bf / af;
+        t.beta_b2[k] = bb / ab;
         glm::vec3 A, D, S;
         glsl::zinke_backscatter(glm::vec3(af), glm::vec3(ab), glm::vec3(t.alpha_f[k]), glm::vec3(t.alpha_b[k]),
                                 glm::vec3(t.beta_f2[k]), glm::vec3(t.beta_b2[k]), p.d_b, A, D, S);

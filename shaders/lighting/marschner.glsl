@@ -54,6 +54,7 @@ COIF_FN float lobe_beta(HairParams hp, int lobe) {
 // The internal reflection of TRT has the same reflectance (reciprocity), so one function serves.
 COIF_FN float fresnel_dielectric(float eta, float cos_i) {
     float ci = clamp(cos_i, 0.0, 1.0);
+    if (ci <= 0.0) return 1.0;  // grazing (also keeps η = 1 from 0/0)
     float sin_t2 = (1.0 - ci * ci) / (eta * eta);
     float ct = safe_sqrt(1.0 - sin_t2);
     float rs = (ci - eta * ct) / (ci + eta * ct);
