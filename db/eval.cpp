@@ -56,8 +56,6 @@ struct L2 {
     double relative() const { return std::sqrt(err2) / std::max(std::sqrt(ref2), kErrorFloor * std::sqrt(static_cast<double>(n))); }
 };
 
-std::uint64_t held_out_seed(std::uint64_t seed) { return splitmix64(seed ^ kHeldOutSalt); }
-
 struct Truth {
     RawFeatures features{};
     std::vector<std::pair<double, double>> angles;
@@ -89,6 +87,8 @@ Truth trace_truth(const DbParams& p, std::uint64_t i, int pairs, bool with_recor
 }
 
 }  // namespace
+
+std::uint64_t held_out_seed(std::uint64_t seed) { return splitmix64(seed ^ kHeldOutSalt); }
 
 ErrorStats error_stats(std::vector<double> e) {
     ErrorStats s;

@@ -23,6 +23,8 @@ namespace coif {
 
 inline constexpr double kErrorFloor = 0.01;
 inline constexpr std::uint64_t kHeldOutSalt = 0x48454C444F555421ull;  // "HELDOUT!"
+// The generator seed of the held-out sectors of a database built with `seed` (eval and coverage).
+std::uint64_t held_out_seed(std::uint64_t seed);
 
 struct EvalOptions {
     std::size_t held_out = 200;

@@ -328,7 +328,7 @@ Shard parse_shard(const std::string& text) {
     } catch (const std::exception&) {
         throw Error::parameter("--shard " + text, "expected k/n with integers 0 ≤ k < n, e.g. 3/8");
     }
-    if (s.count == 0 || s.index >= s.count) throw Error::parameter("--shard " + text, "expected 0 ≤ k < n");
+    if (s.count == 0 || s.index >= s.count) throw Error::parameter("--shard " + text, "expected k/n with 0 ≤ k < n, e.g. 3/8");
     return s;
 }
 
@@ -389,6 +389,12 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
     if (p.sectors > (1ull << 32)) throw Error::parameter("--sectors", "at most 2^32");
     if (o.threads < 1) throw Error::parameter("--threads", "must be at least 1");
     if (o.chunk < 1) throw Error::parameter("chunk", "must be at least 1");
+    // The reader's checks, before anything is traced or written: a file it would refuse is never built.
+    try {
+        (void)params_from_json(params_json(p));
+    } catch (const Error& e) {
+        throw Error::parameter("build parameters (" + e.place() + ")", e.problem());
+    }
     const std::uint64_t first = o.shard.first(p.sectors), last = o.shard.last(p.sectors);
     const std::uint64_t hash = params_hash(p);
     fs::path parts = out;

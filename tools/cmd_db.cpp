@@ -1,8 +1,9 @@
-// coif db build|merge|inspect|plot|eval|index — the HRIR database (004 §4–§5), built from the
+// coif db build|merge|inspect|plot|eval|index|coverage — the HRIR database (004 §4–§5), built from the
 // command line and shardable over any batch scheduler (docs/db.md).
 #include <cstdio>
 #include <thread>
 
+#include "db/coverage.h"
 #include "db/eval.h"
 #include "db/hrir_db.h"
 #include "db/plot.h"
@@ -11,6 +12,7 @@
 #include "models/core/error.h"
 #include "models/core/progress.h"
 #include "tools/cli.h"
+#include "tools/scene_options.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -202,6 +204,64 @@ void add_db(CLI::App& root) {
                             row.alpha.median, row.alpha.p95);
         }
         std::printf("(%.1f s)\n", r.seconds);
+    });
+
+    // ---- coverage ----
+    struct CoverageOpts {
+        std::string file, set = "rich+shape";
+        std::vector<std::string> styles;
+        coif::CoverageOptions c;
+        bool json = false;
+    };
+    auto co = std::make_shared<CoverageOpts>();
+    CLI::App* coverage = db->add_subcommand(
+        "coverage",
+        "Does the database cover the sectors a real hairstyle asks for? Computes the features of every sector of each\n"
+        "style (the renderer's densities, shape in the style's own λ) and prints, per feature column, the database's\n"
+        "1st-99th percentile and range against the style's range, with the share of style sectors below p1 / above p99\n"
+        "(≈ 1 % each if the generator's ranges fit); then the distance of each style sector to its nearest record in the\n"
+        "look-up's normalised feature space, against held-out random sectors of the database's own generator (median,\n"
+        "p95), and the share of style sectors farther than the held-out p95. Format: db/coverage.h.");
+    coverage->add_option("file", co->file, "Database file")->required()->check(CLI::ExistingFile);
+    coverage->add_option("styles", co->styles, "Style files (JSON, coif style import), or @default for the embedded style")->required();
+    coverage->add_option("--features", co->set, "Feature set of the distances: paper, paper+shape, rich, rich+shape (default rich+shape)");
+    coverage->add_option("--held-out", co->c.held_out, "Held-out random sectors for the reference distances (default 1000)");
+    coif::cli::add_json_flag(coverage, co->json);
+    coif::cli::examples(coverage, "  coif db coverage hrir.db @default\n"
+                                  "  coif style import harolongo.data --clusters 64 -o h64.json && coif db coverage hrir.db h64.json --json");
+    coverage->callback([co] {
+        co->c.set = coif::feature_set_from_name(co->set);
+        if (co->c.held_out < 1) throw coif::Error::parameter("--held-out", "must be at least 1");
+        const coif::HrirDatabase d = coif::HrirDatabase::open(co->file);
+        if (d.is_shard()) throw coif::Error(co->file, "", "a shard has no feature statistics: merge the shards first (coif db merge)");
+        const std::vector<float> held = coif::held_out_sector_features(d.params(), co->c.held_out);
+        nlohmann::json all = nlohmann::json::array();
+        for (const std::string& name : co->styles) {
+            const coif::HairStyle style = coif::cli::load_style(name);
+            const std::vector<float> rows = coif::style_sector_features(style);
+            coif::CoverageReport r = coif::database_coverage(d, rows, held, co->c);
+            r.style = name;
+            if (style.layout.grid_s != d.params().generator.feature_grid_s || style.layout.grid_r != d.params().generator.feature_grid_r)
+                std::fprintf(stderr, "coif: note: %s: density grid %dx%d, the database's features use %dx%d\n", name.c_str(), style.layout.grid_s,
+                             style.layout.grid_r, d.params().generator.feature_grid_s, d.params().generator.feature_grid_r);
+            if (co->json) {
+                all.push_back(coif::to_json(r));
+                continue;
+            }
+            std::printf("%s against %s (%zu sectors): %zu sectors, λ = %g; empty sectors %.1f %% (database %.1f %%)\n", name.c_str(),
+                        co->file.c_str(), r.db_sectors, r.style_sectors, style.layout.gaussian_width, 100 * r.style_empty, 100 * r.db_empty);
+            std::printf("  %-22s %8s %8s %8s %8s | %8s %8s %8s %8s %8s | %6s %6s\n", "column", "db min", "db p1", "db p99", "db max", "st min",
+                        "st p1", "st med", "st p99", "st max", "<p1 %", ">p99 %");
+            for (const auto& c : r.columns)
+                std::printf("  %-22s %8.3f %8.3f %8.3f %8.3f | %8.3f %8.3f %8.3f %8.3f %8.3f | %6.1f %6.1f\n", c.name.c_str(), c.db_min, c.db_p01,
+                            c.db_p99, c.db_max, c.style_min, c.style_p01, c.style_median, c.style_p99, c.style_max, 100 * c.below, 100 * c.above);
+            std::printf("  nearest-record distance (%s, normalised): style median %.3f p95 %.3f; held-out (%zu) median %.3f p95 %.3f\n",
+                        r.set.c_str(), r.style_distance.median, r.style_distance.p95, r.held_out, r.held_out_distance.median,
+                        r.held_out_distance.p95);
+            std::printf("  style sectors beyond the held-out p95: %.1f %% (%.1f %% of the non-empty ones)\n", 100 * r.style_beyond_held_out_p95,
+                        100 * r.style_beyond_held_out_p95_nonempty);
+        }
+        if (co->json) coif::cli::print_json(all);
     });
 
     // ---- index ----
