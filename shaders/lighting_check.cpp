@@ -360,7 +360,7 @@ std::vector<MultipleRow> check_multiple(int param_sets, int per_set, std::uint64
 }
 
 std::vector<CostRow> count_fetches(int segments) {
-    const std::vector<Config> configs = random_configs(200, 99);
+    const std::vector<Config> configs = random_configs(40, 99);
     double single = 0, multiple = 0, setup = 0;
     for (const Config& c : configs) {
         HairParams p = c.params;

@@ -310,7 +310,7 @@ ZinkeTable zinke_table(const HairParams& p, int points) {
                     const double to = lo + (i + 0.5) * dt;
                     const double c = std::cos(0.5 * (x - to));
                     const double w = gauss_u(0.5 * (x + to), alpha, beta) * std::cos(to) * std::cos(x) /
-                                     std::max(c * c, 1e-12) * dt / kPi;
+                                     std::max(c * c, 1e-12) * dt / (2.0 * kPi);  // 1/(2π): see zinke_lobe_a
                     glm::dvec3 mf, mb;
                     azimuthal_moments(lobe, p, 0.5 * (x - to), mf, mb);
                     f += w * mf;

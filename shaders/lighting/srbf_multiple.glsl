@@ -165,7 +165,8 @@ COIF_FN vec3 srbf_ms_local(LightingConfig cfg, float theta_o, float phi_o, float
             if (s < m && ci > 1e-6) {
                 float theta_d = 0.5 * (theta_o - x);
                 float cd = cos(theta_d);
-                f = fetch_ms_Ab(theta_d)[c] * ci / max(cd * cd, 1e-8);
+                vec3 ab = fetch_ms_Ab(theta_d);
+                f = ab[c] * ci / max(cd * cd, 1e-8);
             }
             acc += gauss_linear_segment(x_prev, x, vec3(f_prev), vec3(f), gp.mu, gp.lambda).x;
             x_prev = x;
@@ -207,10 +208,12 @@ COIF_FN vec3 N_fit_value(int lobe, HairParams hp, LightingConfig cfg, vec4 f0123
     return N_TRT_fit_value(N_TRT_fit(hp.eta, hp.sigma_a, theta_d, hp.w_c, hp.delta_eta_p, cfg.paper_norm), phi);
 }
 
-// ā_{f,t}(x) or ā_{b,t}(x) (000 eq. 33): the θo factor (1/π) ∫ M_t((x+θo)/2) cos θo cos x / cos²((x-θo)/2) dθo
+// ā_{f,t}(x) and ā_{b,t}(x) (000 eq. 33): the θo factor (1/2π) ∫ M_t((x+θo)/2) cos θo cos x / cos²((x-θo)/2) dθo
 // by the linear quadrature (M_t((x+θo)/2) = g(θo; 2α-x, 2β)/(√πβ)), times the azimuthal factor
-// 2 ∫_0^π w(φ) N_t(x, φ) dφ with w = φ forward, π - φ backward (000 supplement §7).
-COIF_FN vec3 zinke_lobe_a(int lobe, bool forward, HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x) {
+// 2 ∫_0^π w(φ) N_t(θd, φ) dφ with w = φ forward, π - φ backward (000 supplement §7), by the
+// midpoint rule over the fitted N_t (fitted once per call).
+COIF_FN void zinke_lobe_a(int lobe, HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) a_f,
+                          OUT(vec3) a_b) {
     float alpha = lobe_alpha(hp, lobe);
     float beta = lobe_beta(hp, lobe);
     float mu = 2.0 * alpha - x;
@@ -230,19 +233,40 @@ COIF_FN vec3 zinke_lobe_a(int lobe, bool forward, HairParams hp, LightingConfig 
         x_prev = t;
         f_prev = f;
     }
-    float theta_part = COIF_INV_PI * acc / (COIF_SQRT_PI * beta);
+    // 1/(2π), not 000 eq. 32's 1/π: M_t (eq. 7) is normalised in θh, so it integrates to 2 over θo,
+    // and with 1/π a clear fibre would get ā_f + ā_b ≈ 2; Zinke's Ā_b, Δ̄_b need fractions (<= 1).
+    float theta_part = 0.5 * COIF_INV_PI * acc / (COIF_SQRT_PI * beta);
     // 000 eq. 33 evaluates N_t at θd = x ("scattering occurs at θo = -θi"); M_t centres θo at 2α - x,
     // where the difference angle (x - θo)/2 is x - α. We use that centre: with α_R = -7.5° it halves
     // the error of Ā_b at |θd| ~ 1 (measured against the unseparated integral, `coif lighting check`).
-    float theta_d = clamp(x - alpha, -COIF_HALF_PI, COIF_HALF_PI);
-    vec3 phi_part = vec3(0.0);
+    float theta_d = clamp(x - alpha, -COIF_HALF_PI + 1e-3, COIF_HALF_PI - 1e-3);
+    vec4 c_lo = vec4(0.0);
+    vec4 c_hi = vec4(0.0);
+    vec3 tt_b = vec3(0.0);
+    vec3 tt_lambda = vec3(1.0);
+    TrtFit trt;
+    if (lobe == LOBE_R) N_R_coefficients(hp.eta, theta_d, cfg.paper_schlick, f0123, f45, c_lo, c_hi);
+    else if (lobe == LOBE_TT) N_TT_fit(hp.eta, hp.sigma_a, theta_d, cfg.paper_norm, tt_b, tt_lambda);
+    else trt = N_TRT_fit(hp.eta, hp.sigma_a, theta_d, hp.w_c, hp.delta_eta_p, cfg.paper_norm);
+    vec3 fwd = vec3(0.0);
+    vec3 bwd = vec3(0.0);
     float dphi = COIF_PI / float(ZINKE_PHI_STEPS);
     for (int i = 0; i < ZINKE_PHI_STEPS; ++i) {
         float phi = (float(i) + 0.5) * dphi;
-        float w = forward ? phi : COIF_PI - phi;
-        phi_part += w * N_fit_value(lobe, hp, cfg, f0123, f45, theta_d, phi);
+        vec3 n;
+        if (lobe == LOBE_R) {
+            n = vec3(N_R_poly_value(c_lo, c_hi, phi));
+        } else if (lobe == LOBE_TT) {
+            n = vec3(0.0);
+            for (int c = 0; c < 3; ++c) n[c] = tt_b[c] * circ_gauss(phi, COIF_PI, tt_lambda[c]);
+        } else {
+            n = N_TRT_fit_value(trt, phi);
+        }
+        fwd += phi * n;
+        bwd += (COIF_PI - phi) * n;
     }
-    return theta_part * 2.0 * dphi * phi_part;
+    a_f = theta_part * 2.0 * dphi * fwd;
+    a_b = theta_part * 2.0 * dphi * bwd;
 }
 
 // Zinke et al. 2008 §4: average backscattering attenuation Ā_b, shift Δ̄_b and deviation σ̄_b from
@@ -278,8 +302,11 @@ COIF_FN void zinke_terms(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45
     // At grazing θd every ā is ~0 (and may come out -1e-20): the weights get a floor so that the
     // weighted means stay defined (they fall back to the plain mean of the lobes).
     for (int lobe = 0; lobe < 3; ++lobe) {
-        vec3 f = max(zinke_lobe_a(lobe, true, hp, cfg, f0123, f45, x), vec3(0.0)) + 1e-12;
-        vec3 bk = max(zinke_lobe_a(lobe, false, hp, cfg, f0123, f45, x), vec3(0.0)) + 1e-12;
+        vec3 f;
+        vec3 bk;
+        zinke_lobe_a(lobe, hp, cfg, f0123, f45, x, f, bk);
+        f = max(f, vec3(0.0)) + 1e-12;
+        bk = max(bk, vec3(0.0)) + 1e-12;
         float alpha = lobe_alpha(hp, lobe);
         float var = 0.5 * lobe_beta(hp, lobe) * lobe_beta(hp, lobe);
         af += f;
