@@ -1,0 +1,624 @@
+#include "online/shell_renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "models/strands.h"
+#include "offline/sector_generator.h"
+
+namespace coif::gl {
+
+namespace {
+
+constexpr int kLightingTexels = 7;  // 27 floats of C_k, S_k per lighting sample
+constexpr float kDeg = 0.017453292519943295f;
+
+// std430 mirrors of the GLSL structs.
+struct GpuInstance {
+    glm::mat4 model;
+    glm::uvec4 info;
+};
+struct GpuSector {
+    glm::uvec4 id{0};
+    glm::vec4 weight{0};
+    glm::vec4 shadow{0};
+};
+struct GpuSample {
+    glm::vec4 position, tangent, normal;
+};
+struct GpuLight {
+    glm::vec4 direction_lambda, radiance;
+};
+struct Vertex {
+    glm::vec3 position, tangent, normal;
+    glm::vec2 texcoord;
+    glm::vec3 axis_normal;
+};
+struct MeshRange {
+    GLuint first = 0;  // index offset
+    GLsizei count = 0;
+    GLint base_vertex = 0;
+    GLsizei vertex_count = 0;
+};
+
+constexpr std::array<const char*, shading::kLutCount> kLutNames = {
+    "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
+    "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma"};
+
+Texture make_lut_texture(const shading::LutImage& img) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    Texture t(id);
+    glTextureStorage2D(id, 1, GL_RGBA32F, img.width, img.height);
+    glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.texels.data());
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
+    const glm::mat3 r = glm::mat3_cast(glm::quat(s.rotation));
+    glm::mat4 m(orientation * r * static_cast<float>(s.scale));
+    m[3] = glm::vec4(orientation * glm::vec3(s.translation), 1.0f);
+    return m;
+}
+
+}  // namespace
+
+struct ShellRenderer::Impl {
+    const SatfIndex* satf = nullptr;
+    DiskLayout layout;
+    Program shade{{"shaders/gl/shell.vert", "shaders/gl/shell.frag"}};
+    Program floor{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
+    Program lighting{{"shaders/gl/shell_lighting.comp"}};
+    VertexArray vao;
+    Buffer vertices, indices, cluster_ids, instances, sectors, samples, lights;
+    Texture atlas, lighting_tex;
+    std::array<Texture, shading::kLutCount> luts;
+    std::vector<std::vector<MeshRange>> meshes;  // [prototype][layer]
+    std::vector<std::size_t> cluster_proto;      // cluster → prototype slot
+    std::vector<glm::vec3> cluster_centre;
+    int tiles_per_row = 1, atlas_w = 1, atlas_h = 1, views = 32, hrir_length = 32;
+    int lighting_rows = 2;
+    std::size_t sample_count = 0;
+    int light_count = 0;
+    Query query_lighting, query_shells;
+    // The dual-scattering tables of the last parameter set.
+    std::vector<GpuSample> cpu_samples;
+    bool have_ms = false;
+    shading::HairParams ms_params{};
+    shading::LightingConfig ms_config{};
+};
+
+glm::mat3 style_orientation(const HairStyle& style) {
+    glm::dvec3 sum(0.0);
+    for (const Cluster& c : style.clusters) {
+        if (!c.shape) continue;
+        sum += c.placement.apply(c.shape->position(1.0)) - c.placement.apply(c.shape->position(0.0));
+    }
+    StrandStats st;
+    st.mean_root_to_tip = glm::length(sum) > 0 ? glm::normalize(sum) : glm::dvec3(0, -1, 0);
+    return hang_axis_rotation(st);
+}
+
+ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation)
+    : impl_(std::make_unique<Impl>()) {
+    const auto start = std::chrono::steady_clock::now();
+    Impl& m = *impl_;
+    m.satf = &satf;
+    m.layout = style.layout;
+    const DiskLayout& L = m.layout;
+    const HrirDatabase& db = satf.database();
+    const AngleGrids& g = db.params().grids;
+    if (g.fourier_order != 4)
+        throw Error(db.path().string(), "header /grids/fourier_order",
+                    "the shell renderer reads re as a Fourier series of order 4; this database has order " +
+                        std::to_string(g.fourier_order));
+    if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
+    m.views = g.views;
+    m.hrir_length = g.hrir_length;
+
+    // ---- the record atlas and per-record means ------------------------------------------------------
+    const std::size_t records = db.size();
+    const std::size_t tiles = records * 3;
+    m.tiles_per_row = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles) * (g.views + 2) / (g.hrir_length + 2))));
+    m.tiles_per_row = std::max(1, m.tiles_per_row);
+    const int tile_rows = static_cast<int>((tiles + m.tiles_per_row - 1) / m.tiles_per_row);
+    m.atlas_w = m.tiles_per_row * (g.hrir_length + 2);
+    m.atlas_h = tile_rows * (g.views + 2);
+    GLint max_tex = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
+    if (m.atlas_w > max_tex || m.atlas_h > max_tex)
+        throw Error(db.path().string(), "records",
+                    "the record atlas (" + std::to_string(m.atlas_w) + "x" + std::to_string(m.atlas_h) +
+                        ") exceeds this GPU's texture size " + std::to_string(max_tex));
+    std::vector<glm::vec4> atlas(static_cast<std::size_t>(m.atlas_w) * m.atlas_h, glm::vec4(0.0f));
+    std::vector<float> mean_alpha(records), mean_a0(records);
+    const int X = g.hrir_length, V = g.views;
+    for (std::size_t rec = 0; rec < records; ++rec) {
+        const std::vector<float> r = db.record(rec);
+        double sa = 0, s0 = 0;
+        for (int v = 0; v < V; ++v)
+            for (int x = 0; x < X; ++x) {
+                sa += r[g.alpha_offset(v) + x];
+                s0 += r[g.re_offset(v, 0) + x];
+            }
+        mean_alpha[rec] = static_cast<float>(sa / (V * X));
+        mean_a0[rec] = static_cast<float>(s0 / (V * X));
+        for (int part = 0; part < 3; ++part) {
+            const std::size_t tile = rec * 3 + part;
+            const int ox = static_cast<int>(tile % m.tiles_per_row) * (X + 2);
+            const int oy = static_cast<int>(tile / m.tiles_per_row) * (V + 2);
+            for (int py = 0; py < V + 2; ++py)
+                for (int px = 0; px < X + 2; ++px) {
+                    const int v = (py - 1 + V) % V, x = (px - 1 + X) % X;  // periodic borders
+                    glm::vec4 texel(0.0f);
+                    for (int ch = 0; ch < 4; ++ch) {
+                        const int value = part * 4 + ch;  // 0 = α, 1.. = re coefficient value − 1
+                        if (value == 0) texel[ch] = r[g.alpha_offset(v) + x];
+                        else if (value <= 9) texel[ch] = r[g.re_offset(v, value - 1) + x];
+                    }
+                    atlas[static_cast<std::size_t>(oy + py) * m.atlas_w + ox + px] = texel;
+                }
+        }
+    }
+    {
+        GLuint id = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        m.atlas = Texture(id);
+        glTextureStorage2D(id, 1, GL_RGBA16F, m.atlas_w, m.atlas_h);
+        glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_FLOAT, atlas.data());
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    const double sum_alpha = std::accumulate(mean_alpha.begin(), mean_alpha.end(), 0.0);
+    const double sum_a0 = std::accumulate(mean_a0.begin(), mean_a0.end(), 0.0);
+    stats_.re_norm = sum_alpha > 0 && sum_a0 > 0 ? static_cast<float>(sum_a0 / sum_alpha) : 1.0f;
+
+    // ---- prototypes: meshes, sectors (features → look-up), shadow sums --------------------------------
+    std::vector<std::size_t> proto_slot(style.clusters.size(), SIZE_MAX);
+    std::vector<std::size_t> prototypes;
+    for (const Cluster& c : style.clusters)
+        if (proto_slot[c.prototype] == SIZE_MAX) {
+            proto_slot[c.prototype] = prototypes.size();
+            prototypes.push_back(c.prototype);
+        }
+    const std::size_t per_proto = L.sector_count();
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;
+    std::vector<GpuSector> gpu_sectors(prototypes.size() * per_proto);
+    const double lambda = L.gaussian_width;
+    m.meshes.resize(prototypes.size());
+    for (std::size_t p = 0; p < prototypes.size(); ++p) {
+        const Cluster& proto = style.clusters[prototypes[p]];
+        const GeneralizedCylinder& shape = *proto.shape;
+        for (int j = 0; j < L.layers; ++j) {
+            const LayerMesh mesh = layer_mesh(shape, L, j);
+            MeshRange range;
+            range.first = static_cast<GLuint>(indices.size());
+            range.count = static_cast<GLsizei>(mesh.indices.size());
+            range.base_vertex = static_cast<GLint>(vertices.size());
+            range.vertex_count = static_cast<GLsizei>(mesh.position.size());
+            for (std::size_t v = 0; v < mesh.position.size(); ++v) {
+                const Frame f = shape.frame(mesh.texcoord[v].y);
+                vertices.push_back({mesh.position[v], mesh.tangent[v], mesh.normal[v], mesh.texcoord[v], glm::vec3(f.normal)});
+            }
+            indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+            m.meshes[p].push_back(range);
+            stats_.triangles += mesh.indices.size() / 3;
+        }
+        const std::vector<SectorDensity> grids = cluster_sector_densities(shape, L, *proto.density);
+        std::vector<float> rows(per_proto * kRawFeatureCount);
+        for (std::size_t s = 0; s < per_proto; ++s) {
+            const SectorRef ref = sector_ref(L, s);
+            const SectorShape sh = sector_shape(shape, L, ref.plane, ref.layer, ref.sector);
+            const RawFeatures f = raw_sector_features(grids[s], sh.depth / lambda, sh.width / std::max(sh.depth, 1e-12));
+            std::copy(f.begin(), f.end(), rows.begin() + static_cast<std::ptrdiff_t>(s * kRawFeatureCount));
+        }
+        const std::vector<SectorMatch> matches = satf.match_all(rows);
+        std::vector<float> sector_alpha(per_proto, 0.0f);
+        for (std::size_t s = 0; s < per_proto; ++s) {
+            const SectorMatch& mt = matches[s];
+            std::vector<int> order(mt.k);
+            std::iota(order.begin(), order.end(), 0);
+            std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return mt.weight[a] > mt.weight[b]; });
+            GpuSector& gs = gpu_sectors[p * per_proto + s];
+            for (int n = 0; n < std::min(mt.k, kMaxShellNeighbours); ++n) {
+                gs.id[n] = mt.id[order[n]];
+                gs.weight[n] = mt.weight[order[n]];
+            }
+            double a = 0;
+            for (int n = 0; n < mt.k; ++n) a += mt.weight[n] * mean_alpha[mt.id[n]];
+            sector_alpha[s] = static_cast<float>(a);
+        }
+        for (int i = 0; i <= L.s_t; ++i)
+            for (int k = 0; k < L.s_u; ++k) {
+                float outer = 0.0f;  // Σ ᾱ of the layers outside layer j (004 eq. 12's χ(k))
+                for (int j = L.layers - 1; j >= 0; --j) {
+                    const std::size_t s = L.sector_index(i, j, k);
+                    gpu_sectors[p * per_proto + s].shadow.x = outer;
+                    outer += sector_alpha[s];
+                }
+            }
+    }
+    stats_.prototypes = prototypes.size();
+    stats_.sectors = gpu_sectors.size();
+    stats_.records = records;
+    stats_.atlas_width = m.atlas_w;
+    stats_.atlas_height = m.atlas_h;
+
+    // ---- clusters: instances, lighting samples, bounds ------------------------------------------------
+    m.lighting_rows = L.s_t * L.mesh_t + 1;
+    std::vector<GpuInstance> instances;
+    std::vector<GpuSample> samples;
+    std::vector<std::uint32_t> cluster_ids;
+    bounds_min_ = glm::vec3(std::numeric_limits<float>::max());
+    bounds_max_ = glm::vec3(std::numeric_limits<float>::lowest());
+    for (std::size_t c = 0; c < style.clusters.size(); ++c) {
+        const Cluster& cl = style.clusters[c];
+        const std::size_t p = proto_slot[cl.prototype];
+        const glm::mat4 model = to_mat4(orientation, cl.placement);
+        const glm::mat3 rot(model);
+        instances.push_back({model, glm::uvec4(static_cast<std::uint32_t>(p * per_proto), static_cast<std::uint32_t>(c), 0, 0)});
+        cluster_ids.push_back(static_cast<std::uint32_t>(c));
+        m.cluster_proto.push_back(p);
+        const GeneralizedCylinder& shape = *cl.shape;
+        m.cluster_centre.push_back(glm::vec3(model * glm::vec4(glm::vec3(shape.position(0.5)), 1.0f)));
+        for (int r = 0; r < m.lighting_rows; ++r) {
+            const double t = static_cast<double>(r) / (m.lighting_rows - 1);
+            const Frame f = shape.frame(t);
+            samples.push_back({model * glm::vec4(glm::vec3(shape.position(t)), 1.0f),
+                               glm::vec4(glm::normalize(rot * glm::vec3(f.tangent)), 0.0f),
+                               glm::vec4(glm::normalize(rot * glm::vec3(f.normal)), 0.0f)});
+        }
+        const MeshRange& outer = m.meshes[p].back();
+        for (GLsizei v = 0; v < outer.vertex_count; ++v) {
+            const std::size_t vi = static_cast<std::size_t>(outer.base_vertex + v);
+            const glm::vec3 w = glm::vec3(model * glm::vec4(vertices[vi].position, 1.0f));
+            bounds_min_ = glm::min(bounds_min_, w);
+            bounds_max_ = glm::max(bounds_max_, w);
+        }
+    }
+    stats_.clusters = style.clusters.size();
+    m.sample_count = samples.size();
+    m.cpu_samples = samples;
+    stats_.lighting_samples = samples.size();
+
+    // ---- upload ---------------------------------------------------------------------------------------
+    m.vertices = make_buffer(vertices.data(), vertices.size() * sizeof(Vertex));
+    m.indices = make_buffer(indices.data(), indices.size() * sizeof(std::uint32_t));
+    m.cluster_ids = make_buffer(cluster_ids.data(), cluster_ids.size() * sizeof(std::uint32_t));
+    m.instances = make_buffer(instances.data(), instances.size() * sizeof(GpuInstance));
+    m.sectors = make_buffer(gpu_sectors.data(), gpu_sectors.size() * sizeof(GpuSector));
+    m.samples = make_buffer(samples.data(), samples.size() * sizeof(GpuSample));
+    m.vao = make_vertex_array();
+    const GLuint vao = m.vao.id();
+    glVertexArrayVertexBuffer(vao, 0, m.vertices.id(), 0, sizeof(Vertex));
+    glVertexArrayVertexBuffer(vao, 1, m.cluster_ids.id(), 0, sizeof(std::uint32_t));
+    glVertexArrayBindingDivisor(vao, 1, 1);
+    glVertexArrayElementBuffer(vao, m.indices.id());
+    const auto attrib = [&](GLuint loc, GLint n, std::size_t offset) {
+        glEnableVertexArrayAttrib(vao, loc);
+        glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
+        glVertexArrayAttribBinding(vao, loc, 0);
+    };
+    attrib(0, 3, offsetof(Vertex, position));
+    attrib(1, 3, offsetof(Vertex, tangent));
+    attrib(2, 3, offsetof(Vertex, normal));
+    attrib(3, 2, offsetof(Vertex, texcoord));
+    attrib(4, 3, offsetof(Vertex, axis_normal));
+    glEnableVertexArrayAttrib(vao, 5);
+    glVertexArrayAttribIFormat(vao, 5, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(vao, 5, 1);
+    {
+        GLuint id = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        m.lighting_tex = Texture(id);
+        glTextureStorage2D(id, 1, GL_RGBA32F, m.lighting_rows, static_cast<GLsizei>(style.clusters.size() * kLightingTexels));
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    const shading::LightingTables& tables = shading::global_lighting_tables();
+    const shading::LutSet set = tables.set();
+    for (int i = 0; i < shading::kLutCount; ++i)
+        if (set.images[i]) m.luts[i] = make_lut_texture(*set.images[i]);
+    GLuint q[2];
+    glCreateQueries(GL_TIME_ELAPSED, 2, q);
+    m.query_lighting = Query(q[0]);
+    m.query_shells = Query(q[1]);
+    check_errors("ShellRenderer upload");
+    stats_.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+ShellRenderer::~ShellRenderer() = default;
+
+void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
+    std::vector<GpuLight> gpu;
+    for (const SrbfLight& l : lights) {
+        shading::validate_light(l.lambda, l.omega, "SRBF light");
+        gpu.push_back({glm::vec4(glm::normalize(l.omega), l.lambda), glm::vec4(l.L, 0.0f)});
+    }
+    impl_->lights = make_buffer(gpu.data(), gpu.size() * sizeof(GpuLight));
+    impl_->light_count = static_cast<int>(gpu.size());
+}
+
+void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floor_only) {
+    Impl& m = *impl_;
+    if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
+        throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));
+    const DiskLayout& L = m.layout;
+    glViewport(0, 0, camera.width, camera.height);
+    glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    // ---- lighting pass ---------------------------------------------------------------------------
+    if (!floor_only) {
+        const bool same = m.have_ms && std::memcmp(&m.ms_params, &s.hair, sizeof(s.hair)) == 0 &&
+                          std::memcmp(&m.ms_config, &s.config, sizeof(s.config)) == 0;
+        if (!same) {
+            const shading::LightingEvaluator ev(s.hair, s.config);  // validates, builds the dual-scattering tables
+            const shading::LutSet ms = ev.ms_tables().set();
+            for (int i = 0; i < shading::kLutCount; ++i)
+                if (ms.images[i]) m.luts[i] = make_lut_texture(*ms.images[i]);
+            m.ms_params = s.hair;
+            m.ms_config = s.config;
+            m.have_ms = true;
+        }
+        glBeginQuery(GL_TIME_ELAPSED, m.query_lighting.id());
+        const GLuint prog = m.lighting.id();
+        m.lighting.use();
+        for (int i = 0; i < shading::kLutCount; ++i) {
+            glBindTextureUnit(2 + i, m.luts[i].id());
+            glUniform1i(m.lighting.uniform(kLutNames[i]), 2 + i);
+        }
+        glUniform1i(m.lighting.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
+        glUniform1i(m.lighting.uniform("u_rows"), m.lighting_rows);
+        glUniform1i(m.lighting.uniform("u_light_count"), m.light_count);
+        glUniform3fv(m.lighting.uniform("u_eye"), 1, &camera.eye.x);
+        const auto f = [&](const char* n, float v) { glUniform1f(glGetUniformLocation(prog, n), v); };
+        const auto i1 = [&](const char* n, int v) { glUniform1i(glGetUniformLocation(prog, n), v); };
+        f("u_hair.eta", s.hair.eta);
+        glUniform3fv(glGetUniformLocation(prog, "u_hair.sigma_a"), 1, &s.hair.sigma_a.x);
+        f("u_hair.alpha_R", s.hair.alpha_R);
+        f("u_hair.alpha_TT", s.hair.alpha_TT);
+        f("u_hair.alpha_TRT", s.hair.alpha_TRT);
+        f("u_hair.beta_R", s.hair.beta_R);
+        f("u_hair.beta_TT", s.hair.beta_TT);
+        f("u_hair.beta_TRT", s.hair.beta_TRT);
+        f("u_hair.ecc_a", s.hair.ecc_a);
+        f("u_hair.w_c", s.hair.w_c);
+        f("u_hair.delta_eta_p", s.hair.delta_eta_p);
+        f("u_hair.d_b", s.hair.d_b);
+        i1("u_config.segments", s.config.segments);
+        i1("u_config.paper_schlick", s.config.paper_schlick);
+        i1("u_config.paper_norm", s.config.paper_norm);
+        i1("u_config.paper_theta_gauss", s.config.paper_theta_gauss);
+        i1("u_config.paper_tt", s.config.paper_tt);
+        i1("u_lobes", s.lobes);
+        i1("u_multiple", s.multiple ? 1 : 0);
+        f("u_sigma_f2", s.sigma_f2);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());
+        glBindImageTexture(0, m.lighting_tex.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glDispatchCompute(static_cast<GLuint>((m.sample_count + 31) / 32), 1, 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        glEndQuery(GL_TIME_ELAPSED);
+    }
+
+    // ---- shells ------------------------------------------------------------------------------------
+    glBeginQuery(GL_TIME_ELAPSED, m.query_shells.id());
+    const Program& prog = floor_only ? m.floor : m.shade;
+    prog.use();
+    const glm::mat4 vp = camera.projection() * camera.view();
+    glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
+    if (!floor_only) {
+        glBindTextureUnit(0, m.atlas.id());
+        glBindTextureUnit(1, m.lighting_tex.id());
+        glUniform1i(prog.uniform("u_records"), 0);
+        glUniform1i(prog.uniform("u_lighting"), 1);
+        glUniform1i(prog.uniform("u_tiles_per_row"), m.tiles_per_row);
+        glUniform2f(prog.uniform("u_atlas_inv_size"), 1.0f / m.atlas_w, 1.0f / m.atlas_h);
+        glUniform1i(prog.uniform("u_views"), m.views);
+        glUniform1i(prog.uniform("u_hrir_length"), m.hrir_length);
+        glUniform1i(prog.uniform("u_lighting_rows"), m.lighting_rows);
+        glUniform1i(prog.uniform("u_lighting_height"), static_cast<GLint>(m.cluster_proto.size() * kLightingTexels));
+        glUniform1i(prog.uniform("u_s_t"), L.s_t);
+        glUniform1i(prog.uniform("u_s_u"), L.s_u);
+        glUniform1i(prog.uniform("u_layers"), L.layers);
+        glUniform1i(prog.uniform("u_neighbours"), s.neighbours);
+        glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
+        glUniform1f(prog.uniform("u_re_scale"), 1.0f / stats_.re_norm);
+        glUniform3fv(prog.uniform("u_eye"), 1, &camera.eye.x);
+        glUniform1i(prog.uniform("u_debug"), s.debug);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.instances.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m.sectors.id());
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over" (004 eq. 14)
+    glEnable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
+    glBindVertexArray(m.vao.id());
+
+    std::vector<std::size_t> order(m.cluster_proto.size());
+    std::iota(order.begin(), order.end(), 0);
+    if (s.sort_clusters) {
+        std::vector<float> dist(order.size());
+        for (std::size_t c = 0; c < order.size(); ++c) dist[c] = glm::distance(camera.eye, m.cluster_centre[c]);
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
+    }
+    const GLint layer_loc = floor_only ? -1 : prog.uniform("u_layer");
+    const auto draw_layer = [&](std::size_t c, int j) {
+        const MeshRange& r = m.meshes[m.cluster_proto[c]][static_cast<std::size_t>(j)];
+        if (layer_loc >= 0) glUniform1i(layer_loc, j);
+        glDrawElementsInstancedBaseVertexBaseInstance(
+            GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
+            static_cast<GLuint>(c));
+    };
+    for (std::size_t c : order) {
+        glCullFace(GL_FRONT);  // back faces (far side, seen through the core): outer → inner
+        for (int j = L.layers - 1; j >= 0; --j) draw_layer(c, j);
+        glCullFace(GL_BACK);   // front faces: inner → outer
+        for (int j = 0; j < L.layers; ++j) draw_layer(c, j);
+    }
+    glBindVertexArray(0);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glEndQuery(GL_TIME_ELAPSED);
+    check_errors("ShellRenderer::draw");
+    GLuint64 ns = 0;
+    if (!floor_only) {
+        glGetQueryObjectui64v(m.query_lighting.id(), GL_QUERY_RESULT, &ns);
+        timings_.lighting_ms = static_cast<double>(ns) * 1e-6;
+    } else {
+        timings_.lighting_ms = 0;
+    }
+    glGetQueryObjectui64v(m.query_shells.id(), GL_QUERY_RESULT, &ns);
+    timings_.shells_ms = static_cast<double>(ns) * 1e-6;
+}
+
+std::vector<float> ShellRenderer::read_lighting() const {
+    const Impl& m = *impl_;
+    const std::size_t clusters = m.cluster_proto.size();
+    std::vector<float> tex(static_cast<std::size_t>(m.lighting_rows) * clusters * kLightingTexels * 4);
+    glGetTextureImage(m.lighting_tex.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(tex.size() * sizeof(float)), tex.data());
+    std::vector<float> out(clusters * m.lighting_rows * 27);
+    for (std::size_t c = 0; c < clusters; ++c)
+        for (int r = 0; r < m.lighting_rows; ++r)
+            for (int q = 0; q < 27; ++q) {
+                const std::size_t y = c * kLightingTexels + q / 4;
+                out[(c * m.lighting_rows + r) * 27 + q] = tex[(y * m.lighting_rows + r) * 4 + q % 4];
+            }
+    return out;
+}
+
+int ShellRenderer::lighting_rows() const { return impl_->lighting_rows; }
+
+std::vector<glm::vec3> ShellRenderer::lighting_sample(std::size_t index) const {
+    const GpuSample& s = impl_->cpu_samples.at(index);
+    return {glm::vec3(s.position), glm::vec3(s.tangent), glm::vec3(s.normal)};
+}
+
+Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings) {
+    RenderTarget target(camera.width, camera.height, GL_RGBA16F, settings.samples);
+    target.bind();
+    draw(camera, settings);
+    return target.read_back();
+}
+
+// ---- parameters file -------------------------------------------------------------------------------
+
+ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path, "", "cannot open the parameters file");
+    std::stringstream text;
+    text << in.rdbuf();
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text.str());
+    } catch (const nlohmann::json::parse_error& e) {
+        throw Error(path, "byte " + std::to_string(e.byte), "not valid JSON");
+    }
+    if (!j.is_object()) throw Error(path, "JSON /", "expected an object of parameters");
+    static const std::vector<std::string> known = {
+        "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
+        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sigma_f2"};
+    for (const auto& [key, value] : j.items())
+        if (std::find(known.begin(), known.end(), key) == known.end())
+            throw Error(path, "JSON /" + key, "unknown parameter (known: eta, sigma_a, alpha_R_deg, beta_R_deg, …)");
+    const auto number = [&](const char* key) -> std::optional<float> {
+        if (!j.contains(key)) return std::nullopt;
+        if (!j[key].is_number()) throw Error(path, std::string("JSON /") + key, "expected a number");
+        const double v = j[key].get<double>();
+        if (!std::isfinite(v)) throw Error(path, std::string("JSON /") + key, "not a finite number");
+        return static_cast<float>(v);
+    };
+    shading::HairParams& h = s.hair;
+    float eta = h.eta, alpha_R = h.alpha_R, beta_R = h.beta_R, ecc = h.ecc_a, w_c = h.w_c;
+    glm::vec3 sigma = h.sigma_a;
+    if (auto v = number("eta")) eta = *v;
+    if (auto v = number("alpha_R_deg")) alpha_R = *v * kDeg;
+    if (auto v = number("beta_R_deg")) beta_R = *v * kDeg;
+    if (auto v = number("ecc_a")) ecc = *v;
+    if (auto v = number("w_c_deg")) w_c = *v * kDeg;
+    if (j.contains("sigma_a")) {
+        const auto& a = j["sigma_a"];
+        if (!a.is_array() || a.size() != 3) throw Error(path, "JSON /sigma_a", "expected [r, g, b]");
+        for (int c = 0; c < 3; ++c) {
+            if (!a[c].is_number()) throw Error(path, "JSON /sigma_a/" + std::to_string(c), "expected a number");
+            sigma[c] = a[c].get<float>();
+        }
+    }
+    const float delta_eta_p = h.delta_eta_p, d_b = h.d_b;
+    if (j.contains("alpha_R_deg") || j.contains("beta_R_deg"))
+        h = shading::linked_hair_params(eta, sigma, alpha_R, beta_R, ecc, w_c);
+    else {
+        h.eta = eta; h.sigma_a = sigma; h.ecc_a = ecc; h.w_c = w_c;
+    }
+    h.delta_eta_p = delta_eta_p;
+    h.d_b = d_b;
+    if (auto v = number("alpha_TT_deg")) h.alpha_TT = *v * kDeg;
+    if (auto v = number("alpha_TRT_deg")) h.alpha_TRT = *v * kDeg;
+    if (auto v = number("beta_TT_deg")) h.beta_TT = *v * kDeg;
+    if (auto v = number("beta_TRT_deg")) h.beta_TRT = *v * kDeg;
+    if (auto v = number("delta_eta_p")) h.delta_eta_p = *v;
+    if (auto v = number("d_b")) h.d_b = *v;
+    if (auto v = number("kappa_shadow")) {
+        if (*v < 0) throw Error(path, "JSON /kappa_shadow", "must be >= 0");
+        s.kappa_shadow = *v;
+    }
+    if (auto v = number("segments")) s.config.segments = static_cast<int>(*v);
+    if (auto v = number("neighbours")) {
+        if (*v < 1 || *v > kMaxShellNeighbours || *v != std::floor(*v))
+            throw Error(path, "JSON /neighbours", "must be an integer 1.." + std::to_string(kMaxShellNeighbours));
+        s.neighbours = static_cast<int>(*v);
+    }
+    if (auto v = number("sigma_f2")) {
+        if (*v < 0 || *v > 10) throw Error(path, "JSON /sigma_f2", "must be in [0, 10] rad²");
+        s.sigma_f2 = *v;
+    }
+    if (auto v = number("debug")) {
+        if (*v < 0 || *v > 3 || *v != std::floor(*v)) throw Error(path, "JSON /debug", "must be 0, 1, 2 or 3");
+        s.debug = static_cast<int>(*v);
+    }
+    if (j.contains("multiple")) {
+        if (!j["multiple"].is_boolean()) throw Error(path, "JSON /multiple", "expected true or false");
+        s.multiple = j["multiple"].get<bool>();
+    }
+    if (j.contains("lobes")) {
+        const auto& lo = j["lobes"];
+        if (!lo.is_object()) throw Error(path, "JSON /lobes", "expected {\"R\": bool, \"TT\": bool, \"TRT\": bool}");
+        const std::array<std::string, 3> names = {"R", "TT", "TRT"};
+        for (const auto& [key, value] : lo.items()) {
+            const auto it = std::find(names.begin(), names.end(), key);
+            if (it == names.end() || !value.is_boolean())
+                throw Error(path, "JSON /lobes/" + key, "expected R, TT or TRT with true or false");
+            const int bit = 1 << static_cast<int>(it - names.begin());
+            s.lobes = value.get<bool>() ? (s.lobes | bit) : (s.lobes & ~bit);
+        }
+    }
+    shading::validate(s.hair, path);
+    shading::validate(s.config, path);
+    return s;
+}
+
+}  // namespace coif::gl

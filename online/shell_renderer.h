@@ -1,0 +1,119 @@
+#pragma once
+// The online SATF renderer (004 §6) lit by the SRBF circular-Gaussian Marschner lighting (000):
+// every cluster's layered shells drawn with re/α read from the HRIR database on the GPU, the
+// within-cluster shadow of 004 eq. 12, and alpha compositing (004 eq. 14). docs/renderer.md states
+// the choices and their measured cost and error.
+//
+// Once per hairstyle (constructor):
+//   - layer meshes of every prototype cluster (models/generalized_disk.h) in one vertex buffer; each
+//     cluster (prototype or instance) is one GL instance: its placement and the scene orientation
+//     are a model matrix in an SSBO, so instances share their prototype's meshes and sectors;
+//   - per sector: density features → FLANN look-up (db/satf.h, `match_all`, DESIGN.md decision 2),
+//     kept as the `neighbours` best record ids and weights, plus Σ of the outer layers' mean α
+//     (004 eq. 12's sum; the view-averaged α of each outer sector);
+//   - the database's records as a texture atlas (3 RGBA16F tiles of views × X per record: α, then
+//     the 9 Fourier coefficients of re in θl), so x and θv are interpolated by the bilinear fetch;
+//   - lighting samples along each cluster's axis (position, tangent, frame normal).
+// Per frame: a compute pass evaluates the SRBF lighting per lighting sample and light and folds it
+// into the 9 Fourier sums of DESIGN.md decision 1 (shaders/gl/shell_lighting.comp); clusters are
+// sorted back to front by the depth of their centre; each cluster draws its layers' back faces
+// outer → inner, then front faces inner → outer (the transparent core shows what lies behind).
+// Nothing per frame runs on the CPU beyond the sort and the draw calls.
+//
+// Not yet: shadows between clusters (T̃ = T_f = 1, σ_f² = 0 for every light), per-pixel order
+// within interpenetrating clusters, the absorption texture, AOVs.
+//
+// Conventions: world is y-up centimetres after `orientation` (the style's hang axis turned to −y,
+// as the strand preview does); light directions point towards the light; the camera is coif::Camera.
+#include <glm/glm.hpp>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "db/satf.h"
+#include "models/core/camera.h"
+#include "models/core/image.h"
+#include "models/hair_style.h"
+#include "offline/srbf_lights.h"
+#include "online/gl.h"
+#include "shaders/lighting.h"
+
+namespace coif::gl {
+
+inline constexpr int kMaxShellNeighbours = 4;  // records per sector kept for the GPU
+
+struct ShellSettings {
+    shading::HairParams hair = shading::default_hair_params();
+    shading::LightingConfig config = shading::default_config(4);
+    int lobes = 7;                  // bit 0 R, bit 1 TT, bit 2 TRT
+    bool multiple = false;          // dual-scattering multiple scattering: off until T_f, σ_f² come from
+                                    // shadows between clusters (with T_f = 1 it is ~30× the single scattering)
+    float sigma_f2 = 0.0f;          // σ̄_f² (rad²) of every light, until shadows between clusters supply it
+    float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
+    int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
+    glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
+    int samples = 4;                // MSAA samples of the offscreen target
+    bool sort_clusters = true;      // back-to-front order of clusters (off: style order, for error figures)
+    int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re)
+};
+// Reads a parameters file (JSON object; every key optional; degrees for angles):
+//   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
+//    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
+//    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
+//    "debug": 0..3 (ShellSettings::debug)}
+// α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
+// throws coif::Error naming the file and the key.
+ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
+
+// The rotation that turns the style's mean root→tip direction (from its clusters' axes) to −y
+// (models/strands.h hang_axis_rotation): identity for y-up styles.
+glm::mat3 style_orientation(const HairStyle& style);
+
+struct ShellStats {
+    std::size_t clusters = 0, prototypes = 0, sectors = 0, triangles = 0, lighting_samples = 0, records = 0;
+    int atlas_width = 0, atlas_height = 0;
+    double prepare_seconds = 0;  // densities, features, look-up and upload
+    float re_norm = 1;           // Σ mean re a_0 / Σ mean α over the database (see docs/renderer.md)
+};
+
+struct ShellTimings {  // GPU time of the last draw, milliseconds (GL_TIME_ELAPSED queries)
+    double lighting_ms = 0, shells_ms = 0;
+};
+
+class ShellRenderer {
+public:
+    // Needs a current GL 4.5 context. `satf` (and its database) must outlive the renderer.
+    ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation);
+    ~ShellRenderer();
+    ShellRenderer(const ShellRenderer&) = delete;
+    ShellRenderer& operator=(const ShellRenderer&) = delete;
+
+    void set_lights(std::span<const SrbfLight> lights);
+    // Draws into the bound framebuffer (cleared to the background first). `floor` draws the same
+    // shells in the same order with a trivial shader (the floor of `coif bench render`).
+    void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);
+    // Renders into an offscreen target of the camera's size and returns the linear RGBA image.
+    Image render(const Camera& camera, const ShellSettings& settings);
+
+    const ShellStats& stats() const { return stats_; }
+    // The lighting pass's output of the last draw: per cluster, per lighting row, the 27 sums
+    // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator.
+    std::vector<float> read_lighting() const;
+    int lighting_rows() const;
+    // The lighting samples (world position, tangent, frame normal r0) in cluster-major order.
+    std::vector<glm::vec3> lighting_sample(std::size_t index) const;
+    const ShellTimings& timings() const { return timings_; }
+    // Bounds of the placed outer layers (world, oriented).
+    glm::vec3 bounds_min() const { return bounds_min_; }
+    glm::vec3 bounds_max() const { return bounds_max_; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    ShellStats stats_;
+    ShellTimings timings_;
+    glm::vec3 bounds_min_{0}, bounds_max_{0};
+};
+
+}  // namespace coif::gl

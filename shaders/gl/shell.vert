@@ -1,0 +1,36 @@
+// Layer meshes of the SATF shells (online/shell_renderer.h). One draw per (cluster, layer, facing);
+// the cluster is the instance (attribute 5, divisor 1, selected by the draw's base instance).
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_tangent;
+layout(location = 2) in vec3 a_normal;
+layout(location = 3) in vec2 a_texcoord;     // (u / 2π, t)
+layout(location = 4) in vec3 a_axis_normal;  // the cylinder's frame normal n(t): reference axis of azimuths
+layout(location = 5) in uint a_cluster;
+
+struct ShellInstance {
+    mat4 model;   // world = model · prototype coordinates (similarity, then the scene orientation)
+    uvec4 info;   // x: first sector of the prototype, y: cluster index (lighting rows)
+};
+layout(std430, binding = 0) readonly buffer Instances { ShellInstance instances[]; };
+
+uniform mat4 u_view_projection;
+
+out vec3 v_position;
+out vec3 v_tangent;
+out vec3 v_normal;
+out vec3 v_axis_normal;
+out vec2 v_texcoord;
+flat out uvec2 v_info;
+
+void main() {
+    ShellInstance inst = instances[a_cluster];
+    vec4 world = inst.model * vec4(a_position, 1.0);
+    mat3 rot = mat3(inst.model);  // uniform scale: directions only need normalising
+    v_position = world.xyz;
+    v_tangent = rot * a_tangent;
+    v_normal = rot * a_normal;
+    v_axis_normal = rot * a_axis_normal;
+    v_texcoord = a_texcoord;
+    v_info = inst.info.xy;
+    gl_Position = u_view_projection * world;
+}

@@ -1,0 +1,91 @@
+// The lighting pass of the shell renderer (DESIGN.md decisions 1 and 3): per lighting sample along
+// each cluster's axis (position, tangent T, frame normal r0) and per SRBF light j, the weight
+// w_j = L_j (𝓜_j + 𝓜^G_j + d_b 𝓜^L_j) of the SRBF Marschner lighting (shaders/lighting/, 000
+// eq. 2–4 with T̃ = T_f = 1 and σ_f² = 0: no shadows between clusters yet), and the light's in-plane
+// azimuth ψ_j in the fixed frame (r0, T × r0) (shaders/gl/sector_frame.glsl). Stored:
+//   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
+// with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
+// of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
+// 27 floats in 7 RGBA32F texels per sample: texel (row, cluster · 7 + m).
+#include "shaders/lighting/luts_gl.glsl"
+#include "shaders/lighting/srbf_single.glsl"
+#include "shaders/lighting/srbf_multiple.glsl"
+#include "shaders/gl/sector_frame.glsl"
+
+layout(local_size_x = 32) in;
+
+struct LightingSample {
+    vec4 position;
+    vec4 tangent;
+    vec4 normal;
+};
+layout(std430, binding = 2) readonly buffer Samples { LightingSample samples[]; };
+struct GpuLight {
+    vec4 direction_lambda;  // xyz towards the light (unit), w = λ_j
+    vec4 radiance;          // rgb = L_j
+};
+layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
+layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
+
+uniform int u_sample_count;
+uniform int u_rows;
+uniform int u_light_count;
+uniform vec3 u_eye;
+uniform HairParams u_hair;
+uniform LightingConfig u_config;
+uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT
+uniform int u_multiple;  // dual scattering on/off
+uniform float u_sigma_f2;  // σ̄_f² of every light (rad²) until shadows between clusters supply it
+
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= u_sample_count) return;
+    LightingSample s = samples[i];
+    vec3 T = normalize(s.tangent.xyz);
+    vec3 r0 = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
+    vec3 w = cross(T, r0);
+    vec3 V = normalize(u_eye - s.position.xyz);
+    float theta_o;
+    float phi_o;
+    hair_angles(V, T, r0, w, theta_o, phi_o);
+    vec4 f0123;
+    vec4 f45;
+    srbf_point_setup(u_hair, u_config, f0123, f45);
+    vec3 C[5];
+    vec3 S[5];
+    for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
+    for (int j = 0; j < u_light_count; ++j) {
+        vec3 l = lights[j].direction_lambda.xyz;
+        float lambda_j = lights[j].direction_lambda.w;
+        float theta_j;
+        float phi_j;
+        hair_angles(l, T, r0, w, theta_j, phi_j);
+        vec3 m = vec3(0.0);
+        if ((u_lobes & 1) != 0) m += srbf_single_lobe(LOBE_R, u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+        if ((u_lobes & 2) != 0) m += srbf_single_lobe(LOBE_TT, u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+        if ((u_lobes & 4) != 0) m += srbf_single_lobe(LOBE_TRT, u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+        if (u_multiple != 0) m += srbf_multiple(u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, u_sigma_f2);
+        vec3 wj = lights[j].radiance.rgb * m;
+        float psi = sector_azimuth(l, T, r0);
+        float proj = length(l - dot(l, T) * T);
+        float lp = lambda_j / max(proj, 1e-3);
+        C[0] += wj;
+        for (int k = 1; k <= 4; ++k) {
+            float d = exp(-float(k * k) * lp * lp * 0.25);
+            C[k] += wj * (d * cos(float(k) * psi));
+            S[k] += wj * (d * sin(float(k) * psi));
+        }
+    }
+    float v[28];
+    v[0] = C[0].x; v[1] = C[0].y; v[2] = C[0].z;
+    for (int k = 1; k <= 4; ++k) {
+        int o = 3 + 6 * (k - 1);
+        v[o] = C[k].x; v[o + 1] = C[k].y; v[o + 2] = C[k].z;
+        v[o + 3] = S[k].x; v[o + 4] = S[k].y; v[o + 5] = S[k].z;
+    }
+    v[27] = 0.0;
+    int cluster = i / u_rows;
+    int row = i - cluster * u_rows;
+    for (int m = 0; m < 7; ++m)
+        imageStore(u_out, ivec2(row, cluster * 7 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
+}

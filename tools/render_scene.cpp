@@ -1,0 +1,76 @@
+#include "tools/render_scene.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+#include "models/core/error.h"
+#include "offline/envmap.h"
+#include "offline/srbf_fit.h"
+#include "tools/assets.h"
+
+namespace coif::cli {
+
+std::filesystem::path default_database_path() {
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    const char* home = std::getenv("HOME");
+    const std::filesystem::path base = xdg && *xdg ? std::filesystem::path(xdg)
+                                     : home && *home ? std::filesystem::path(home) / ".cache"
+                                                     : std::filesystem::temp_directory_path();
+    DbParams p;
+    p.sectors = kDefaultRenderSectors;
+    char hash[32];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(params_hash(p)));
+    return base / "coif" / ("default-" + std::to_string(p.sectors) + "-" + hash + ".db");
+}
+
+HrirDatabase open_render_database(const std::string& db_path) {
+    if (!db_path.empty()) return HrirDatabase::open(db_path);
+    const std::filesystem::path path = default_database_path();
+    if (std::filesystem::exists(path)) {
+        std::fprintf(stderr, "coif: no --db given: using the cached default database %s\n", path.string().c_str());
+        return HrirDatabase::open(path);
+    }
+    std::filesystem::create_directories(path.parent_path());
+    BuildOptions b;
+    b.params.sectors = kDefaultRenderSectors;
+    b.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::fprintf(stderr,
+                 "coif: no --db given: building the default database (%llu sectors, %d threads) into %s; later runs reuse it\n",
+                 static_cast<unsigned long long>(b.params.sectors), b.threads, path.string().c_str());
+    build_database(b, path);
+    return HrirDatabase::open(path);
+}
+
+std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* label) {
+    if (env.empty()) {
+        const std::vector<std::byte> bytes = asset_bytes("default_lights.json");
+        *label = "embedded default lights (40 SRBF, courtyard)";
+        return srbf_lights_from_json(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                                     "<embedded default_lights.json>")
+            .lights;
+    }
+    const std::filesystem::path p(env);
+    if (p.extension() == ".json") {
+        *label = env;
+        return read_srbf_lights(p).lights;
+    }
+    const EnvMap map = load_envmap(p);
+    SrbfFitSettings fs;
+    std::fprintf(stderr, "coif: fitting %d SRBF lights to %s (save them with `coif env fit` to skip this)\n", fs.lights,
+                 env.c_str());
+    *label = env + " (fitted " + std::to_string(fs.lights) + " SRBF lights)";
+    return fit_srbf_lights(map, fs).lights;
+}
+
+Camera shell_camera(const SceneOptions& scene, const gl::ShellRenderer& r) {
+    const Camera cam = Camera::orbit(r.bounds_min(), r.bounds_max(), static_cast<float>(radians(scene.azimuth_deg)),
+                                     static_cast<float>(radians(scene.elevation_deg)), scene.width, scene.height,
+                                     static_cast<float>(radians(scene.fov_deg)));
+    const glm::vec3 lo = r.bounds_min(), hi = r.bounds_max();
+    if (glm::all(glm::greaterThan(cam.eye, lo)) && glm::all(glm::lessThan(cam.eye, hi)))
+        throw Error::parameter("camera", "the eye lies inside the hair's bounding box");
+    return cam;
+}
+
+}  // namespace coif::cli
