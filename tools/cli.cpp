@@ -27,6 +27,8 @@ CLI::App* noun(CLI::App& root, const std::string& name, const std::string& descr
         if (sub->get_name() == name) return sub;
     CLI::App* sub = root.add_subcommand(name, description);
     sub->require_subcommand(1);
+    // CLI11 copies the parent's footer into subcommands; a noun points at its verbs' own help instead.
+    sub->footer("\nRun `coif " + name + " <command> --help` for each command's options and examples.");
     return sub;
 }
 

@@ -20,8 +20,8 @@ void add_bench(CLI::App& root) {
     auto o = std::make_shared<GlBenchOptions>();
     CLI::App* gl = bench->add_subcommand(
         "gl",
-        "Measure the fill-rate floor of this GPU: full-screen layers of a constant-colour fragment shader, alpha\n"
-        "blended into an RGBA16F target, headless. Reports fragments per second (GPU timer queries and wall\n"
+        "The fill-rate floor of this GPU: blended full-screen layers of a constant-colour shader\n"
+        "Full-screen layers of a constant-colour fragment shader, alpha blended into an RGBA16F target, headless. Reports fragments per second (GPU timer queries and wall\n"
         "clock). Renderer benchmarks express their cost as a ratio to this floor.");
     gl->add_option("--width", o->width, "Target width in pixels")->check(CLI::Range(1, 16384));
     gl->add_option("--height", o->height, "Target height in pixels")->check(CLI::Range(1, 16384));
