@@ -74,9 +74,12 @@ nlohmann::json to_json(const SectorRanges& r) {
             {"radial_bias_max", r.radial_bias_max},
             {"hole_probability", r.hole_probability},
             {"hole_radius", {r.hole_radius_min, r.hole_radius_max}},
+            {"band_probability", r.band_probability},
+            {"band_fraction", {r.band_fraction_min, r.band_fraction_max}},
             {"trace_cells_per_lambda", r.trace_cells_per_lambda},
             {"trace_cells", {r.trace_cells_min, r.trace_cells_max}},
-            {"feature_grid", {r.feature_grid_s, r.feature_grid_r}}};
+            {"feature_grid", {r.feature_grid_s, r.feature_grid_r}},
+            {"feature_grid_periodic", r.feature_grid_periodic}};
 }
 
 namespace {
@@ -110,6 +113,9 @@ SectorRanges sector_ranges_from_json(const nlohmann::json& j) {
     r.radial_bias_max = field<double>(j, "radial_bias_max", "JSON /generator");
     r.hole_probability = field<double>(j, "hole_probability", "JSON /generator");
     pair_field(j, "hole_radius", r.hole_radius_min, r.hole_radius_max);
+    // Absent in files written before the band existed: those were built without it.
+    r.band_probability = j.contains("band_probability") ? field<double>(j, "band_probability", "JSON /generator") : 0.0;
+    if (j.contains("band_fraction")) pair_field(j, "band_fraction", r.band_fraction_min, r.band_fraction_max);
     r.trace_cells_per_lambda = field<int>(j, "trace_cells_per_lambda", "JSON /generator");
     const auto cells = field<std::array<int, 2>>(j, "trace_cells", "JSON /generator");
     r.trace_cells_min = cells[0];
@@ -117,8 +123,11 @@ SectorRanges sector_ranges_from_json(const nlohmann::json& j) {
     const auto fg = field<std::array<int, 2>>(j, "feature_grid", "JSON /generator");
     r.feature_grid_s = fg[0];
     r.feature_grid_r = fg[1];
+    r.feature_grid_periodic = j.contains("feature_grid_periodic") ? field<bool>(j, "feature_grid_periodic", "JSON /generator") : true;
     const bool ok = r.depth_min > 0 && r.depth_max >= r.depth_min && r.aspect_min > 0 && r.aspect_max >= r.aspect_min &&
                     r.coverage_min > 0 && r.coverage_max >= r.coverage_min && r.trace_cells_per_lambda > 0 &&
+                    r.band_probability >= 0 && r.band_probability <= 1 && r.band_fraction_min > 0 &&
+                    r.band_fraction_max >= r.band_fraction_min && r.band_fraction_max <= 1 &&
                     r.trace_cells_min >= 2 && r.trace_cells_max >= r.trace_cells_min && r.trace_cells_max <= kMaxGridCells &&
                     r.feature_grid_s > 0 && r.feature_grid_r > 0 && r.feature_grid_s <= kMaxGridCells &&
                     r.feature_grid_r <= kMaxGridCells;
@@ -130,7 +139,9 @@ nlohmann::json to_json(const SectorParams& p) {
     return {{"depth_over_lambda", p.depth}, {"width_over_lambda", p.width}, {"coverage", p.coverage},
             {"clumping", p.clumping},       {"clump_width", p.clump_width},  {"radial_bias", p.radial_bias},
             {"hole", p.hole},               {"hole_s", p.hole_s},            {"hole_r", p.hole_r},
-            {"hole_radius", p.hole_radius}, {"strands", p.strands}};
+            {"hole_radius", p.hole_radius}, {"band", p.band},                {"band_s0", p.band_s0},
+            {"band_s", p.band_s},           {"band_r", p.band_r},            {"band_outer", p.band_outer},
+            {"strands", p.strands}};
 }
 
 SectorDensity periodic_density(int n_s, int n_r, double width, double depth, const std::vector<glm::dvec2>& strands) {
@@ -162,6 +173,14 @@ SectorSample generate_sector(const SectorRanges& g, std::uint64_t global_seed, s
     p.hole_s = rng.uniform(0.0, p.width);
     p.hole_r = rng.uniform(0.0, p.depth);
     p.hole_radius = rng.uniform(g.hole_radius_min, g.hole_radius_max) * std::min(p.width, p.depth);
+    if (g.band_probability > 0) {  // a parameter, not a random outcome: the draw order stays fixed per build
+        p.band = rng.uniform() < g.band_probability;
+        p.band_s0 = rng.uniform(0.0, p.width);
+        p.band_s = rng.uniform(g.band_fraction_min, g.band_fraction_max);
+        p.band_r = rng.uniform(g.band_fraction_min, g.band_fraction_max);
+        p.band_outer = rng.uniform() < 0.5;
+        if (!p.band) p.band_s = p.band_r = 1;
+    }
     if (empty) p.coverage = 0;
 
     const double area = p.width * p.depth;
@@ -190,8 +209,15 @@ SectorSample generate_sector(const SectorRanges& g, std::uint64_t global_seed, s
         } else {
             x = {u1 * p.width, radial(u2)};
         }
-        x.x = std::fmod(x.x, p.width);
-        if (x.x < 0) x.x += p.width;
+        const auto wrap = [&](double s) {
+            s = std::fmod(s, p.width);
+            return s < 0 ? s + p.width : s;
+        };
+        x.x = wrap(x.x);
+        if (p.band) {  // squeeze the whole layout into the band (clumps and radial bias keep their shape)
+            x.x = wrap(p.band_s0 + p.band_s * x.x);
+            x.y = p.band_r * x.y + (p.band_outer ? (1 - p.band_r) * p.depth : 0.0);
+        }
         if (p.hole) {
             double ds = std::abs(x.x - p.hole_s);
             ds = std::min(ds, p.width - ds);
@@ -205,7 +231,9 @@ SectorSample generate_sector(const SectorRanges& g, std::uint64_t global_seed, s
         return std::clamp(static_cast<int>(std::ceil(extent * g.trace_cells_per_lambda)), g.trace_cells_min, g.trace_cells_max);
     };
     out.trace_grid = periodic_density(cells(p.width), cells(p.depth), p.width, p.depth, out.strands);
-    out.feature_grid = periodic_density(g.feature_grid_s, g.feature_grid_r, p.width, p.depth, out.strands);
+    out.feature_grid = g.feature_grid_periodic
+                           ? periodic_density(g.feature_grid_s, g.feature_grid_r, p.width, p.depth, out.strands)
+                           : density_from_points(g.feature_grid_s, g.feature_grid_r, p.width, p.depth, out.strands, 1.0);
     return out;
 }
 

@@ -9,7 +9,8 @@
 //
 // Sector coordinates (DESIGN.md, models/sector_density.h): s ∈ [0, W) along the track, r ∈ [0, H]
 // across it, r = H the layer's outer surface. Strands are placed with s periodic (a strand near
-// s = 0 also puts its tail into s ≈ W), matching the tracer, which treats s as periodic.
+// s = 0 also puts its tail into s ≈ W) on the tracing grid, matching the tracer, which treats s as
+// periodic; the feature grid is not periodic, as the renderer's sectors are not.
 //
 // A sample is drawn from a seed derived from (global seed, sector index) only — never from a
 // shared stream — so any contiguous range of indices can be generated on its own (sharded builds,
@@ -24,6 +25,7 @@
 //   radial bias    strand density ∝ 1 + b·(2r/H − 1): b > 0 denser outside, b < 0 denser inside
 //   hole           with probability p_hole, an empty disc cut out of the sector
 //   empty          with probability p_empty, no strands at all (sparse regions of real styles)
+//   band           with probability p_band, strands only in a band of the track and of the depth
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -55,25 +57,40 @@ private:
 };
 
 struct SectorRanges {
-    // 1.5 ≤ H/λ ≤ 8: DiskLayout's default shell (4 layers over v ∈ [0.2, 1]) on clusters of radius
-    // 0.25–2 cm with λ = 0.05 cm gives H = 0.2·R/λ ∈ [1, 8]; thinner layers hold less than one strand Gaussian.
-    double depth_min = 1.5, depth_max = 8.0;
-    // 0.5 ≤ W/H ≤ 5: track arc 2π·R·v_mid/s_u over the layer depth for s_u = 8, v_mid ∈ [0.3, 0.9].
-    double aspect_min = 0.5, aspect_max = 5.0;
-    // Coverage n·πλ² from 0.1 (a few stray strands) to 3 (strands ~0.6 λ apart, a dense layer).
-    double coverage_min = 0.1, coverage_max = 3.0;
+    // The ranges were set by `coif db coverage` against the fitted real styles (docs/db.md, "Coverage"):
+    // the harolongo fit (64 clusters, λ = 0.0985) has H/λ 1.38–12.7, W/H 0.52–7.9 and mean density up
+    // to 4.3 between its 1st and 99th percentiles; the first ranges (H/λ 1.5–8, W/H 0.5–5, coverage
+    // 0.1–3, no band) left 4.4 %, 21 % and 2.8 % of its sectors above the database's 99th percentile.
+    // 1.25 ≤ H/λ ≤ 13: layers thinner than ~1 λ hold less than one strand Gaussian.
+    double depth_min = 1.25, depth_max = 13.0;
+    // 0.5 ≤ W/H ≤ 8.5: track arc over layer depth; elongated ellipses (a ≫ b) give the long tail.
+    double aspect_min = 0.5, aspect_max = 8.5;
+    // Coverage n·πλ² from 0.1 (a few stray strands) to 5 (strands ~0.8 λ apart, a dense layer).
+    double coverage_min = 0.1, coverage_max = 5.0;
     double empty_probability = 0.03;
     double clumping_max = 0.9;                            // fraction of strands in clumps
     double clump_width_min = 0.5, clump_width_max = 3.0;  // σ of a clump, in λ
     double radial_bias_max = 0.8;                         // |b| ≤ 0.8 keeps the pdf positive
     double hole_probability = 0.25;
     double hole_radius_min = 0.15, hole_radius_max = 0.4;  // relative to min(W, H)
+    // Partial fill: real sectors are often filled in part (a cluster's strands end inside the layer, or
+    // one or two strands sit near an edge), which puts the density centroid near an edge (centroid_s
+    // and centroid_r of the harolongo fit reach 0.06 and 0.94; without the band 15–16 % of its sectors
+    // fell outside the database's 1–99 % range on each side). With probability p_band the strands are
+    // confined to a band: the fraction f_s of the track (periodic, at a random start) and the fraction
+    // f_r of the depth on the inner or the outer side, f_s, f_r uniform in [band_min, band_max].
+    // p_band = 0 draws nothing, so files written before the band existed regenerate the same sectors.
+    double band_probability = 0.35;
+    double band_fraction_min = 0.15, band_fraction_max = 1.0;
     // Ray-tracing grid: cells of at most λ / kTraceCellsPerLambda, between these counts per side.
     int trace_cells_per_lambda = 3;
     int trace_cells_min = 8, trace_cells_max = 96;
     // Feature grid: the renderer's own density grid (DiskLayout::grid_s × grid_r), so the features of
     // a database sector are computed exactly as the renderer computes those of its sectors.
     int feature_grid_s = DiskLayout{}.grid_s, feature_grid_r = DiskLayout{}.grid_r;
+    // false: the feature grid is not periodic (SectorSample::feature_grid); files written before this field
+    // existed had a periodic one and read back as true.
+    bool feature_grid_periodic = false;
 };
 nlohmann::json to_json(const SectorRanges& r);
 SectorRanges sector_ranges_from_json(const nlohmann::json& j);  // throws coif::Error on a bad field
@@ -85,6 +102,9 @@ struct SectorParams {
     double clumping = 0, clump_width = 1, radial_bias = 0;
     bool hole = false;
     double hole_s = 0, hole_r = 0, hole_radius = 0;
+    bool band = false;
+    double band_s0 = 0, band_s = 1, band_r = 1;  // start (λ) and fraction along s; fraction along r
+    bool band_outer = false;                      // the r band is on the outer (r = H) side
     std::size_t strands = 0;
 };
 nlohmann::json to_json(const SectorParams& p);
@@ -93,7 +113,10 @@ struct SectorSample {
     SectorParams params;
     std::vector<glm::dvec2> strands;  // strand crossings (s, r) in λ, s ∈ [0, W), r ∈ [0, H]
     SectorDensity trace_grid;         // fine grid for the ray tracer (λ = 1)
-    SectorDensity feature_grid;       // the renderer's grid, for the features
+    // The renderer's grid, for the features. Not periodic (unlike trace_grid): the renderer's sectors are
+    // not, and a strand near an edge must move the centroid there as it does in a real sector (coverage
+    // of the harolongo fit: 5.7 % → 2.1 % of its sectors beyond the held-out p95 nearest-record distance).
+    SectorDensity feature_grid;
 };
 
 SectorSample generate_sector(const SectorRanges& ranges, std::uint64_t global_seed, std::uint64_t index);

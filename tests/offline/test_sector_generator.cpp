@@ -51,4 +51,38 @@ TEST(SectorGenerator, FeatureSetsPickTheirColumns) {
     for (auto s : coif::kAllFeatureSets) EXPECT_EQ(coif::feature_set_from_name(coif::feature_set_name(s)), s);
 }
 
+TEST(SectorGenerator, BandConfinesTheStrands) {
+    // With p_band = 1 every strand lies in the r band (exact: the map is affine, tolerance 1e-9 λ for rounding).
+    coif::SectorRanges g;
+    g.band_probability = 1;
+    for (std::uint64_t i = 0; i < 100; ++i) {
+        const auto s = coif::generate_sector(g, 11, i);
+        ASSERT_TRUE(s.params.band);
+        const double lo = s.params.band_outer ? (1 - s.params.band_r) * s.params.depth : 0.0;
+        const double hi = lo + s.params.band_r * s.params.depth;
+        for (const auto& x : s.strands) {
+            EXPECT_GE(x.y, lo - 1e-9);
+            EXPECT_LE(x.y, hi + 1e-9);
+        }
+    }
+}
+
+TEST(SectorGenerator, HeadersWithoutTheNewFieldsReadAsTheOldGenerator) {
+    // Files written before the band and the non-periodic feature grid regenerate their own sectors.
+    nlohmann::json j = coif::to_json(coif::SectorRanges{});
+    j.erase("band_probability");
+    j.erase("band_fraction");
+    j.erase("feature_grid_periodic");
+    const coif::SectorRanges old = coif::sector_ranges_from_json(j);
+    EXPECT_EQ(old.band_probability, 0.0);
+    EXPECT_TRUE(old.feature_grid_periodic);
+    const auto s = coif::generate_sector(old, 3, 7);
+    EXPECT_FALSE(s.params.band);
+    EXPECT_EQ(s.feature_grid.rho, coif::periodic_density(old.feature_grid_s, old.feature_grid_r, s.params.width, s.params.depth, s.strands).rho);
+    // And the current defaults round-trip.
+    const coif::SectorRanges now = coif::sector_ranges_from_json(coif::to_json(coif::SectorRanges{}));
+    EXPECT_EQ(now.band_probability, coif::SectorRanges{}.band_probability);
+    EXPECT_FALSE(now.feature_grid_periodic);
+}
+
 }  // namespace
