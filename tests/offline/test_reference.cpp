@@ -240,23 +240,29 @@ TEST(ReferenceCli, RendersAndRejectsBadInputWithoutOutput) {
 }
 
 TEST(Reference, SlowConvergenceBetweenSeeds) {
-    // The noise floor of comparisons: two reference renders of the default-like bundle that differ only in
-    // the seed. At 64 spp the tone-mapped mean FLIP between them must be small (< 0.1, the project's goal
-    // for a full render), or the reference could not resolve that goal.
+    // The noise floor of comparisons: two reference renders of the bundle that differ only in the seed.
+    // The tone-mapped mean FLIP between them must fall as samples grow (64 → 512 spp), and at 512 spp it must
+    // be below the project's goal of 0.10 for a full render, or the reference could not resolve that goal.
+    // Measured: 0.154 at 64 spp, 0.078 at 512 spp (96×96, 40-fibre bundle).
     const MarschnerFiber fibre(shading::default_hair_params());
     const ReferenceEnvironment env = ReferenceEnvironment::constant(glm::vec3(1.0f));
-    ReferenceSettings s;
-    s.samples_per_pixel = 64;
-    s.progress = false;
-    s.fiber_radius = 0.01f;
     const Camera cam = camera_on(glm::vec3(0, 0.3f, 3), 96, 30);
-    const Image a = ReferenceRenderer(bundle(), env, fibre, s).render(cam);
-    s.seed = 2;
-    const Image b = ReferenceRenderer(bundle(), env, fibre, s).render(cam);
-    const CompareResult r = compare_images(a, b, {});
-    std::printf("convergence at 64 spp: PSNR %s dB, SSIM %.4f, FLIP %.4f (tone-mapped, hair)\n",
-                format_metric(r.tone_mapped.psnr_db, 2).c_str(), r.tone_mapped.ssim, r.tone_mapped.flip);
-    EXPECT_LT(r.tone_mapped.flip, 0.1);
+    double previous = 1.0;
+    for (const int spp : {64, 512}) {
+        ReferenceSettings s;
+        s.samples_per_pixel = spp;
+        s.progress = false;
+        s.fiber_radius = 0.01f;
+        const Image a = ReferenceRenderer(bundle(), env, fibre, s).render(cam);
+        s.seed = 2;
+        const Image b = ReferenceRenderer(bundle(), env, fibre, s).render(cam);
+        const CompareResult r = compare_images(a, b, {});
+        std::printf("convergence at %d spp: PSNR %s dB, SSIM %.4f, FLIP %.4f (tone-mapped, hair)\n", spp,
+                    format_metric(r.tone_mapped.psnr_db, 2).c_str(), r.tone_mapped.ssim, r.tone_mapped.flip);
+        EXPECT_LT(r.tone_mapped.flip, previous);
+        previous = r.tone_mapped.flip;
+    }
+    EXPECT_LT(previous, 0.1);
 }
 
 }  // namespace
