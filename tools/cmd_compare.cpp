@@ -30,8 +30,8 @@ void add_compare(CLI::App& root) {
     auto o = std::make_shared<CompareCliOptions>();
     CLI::App* cmd = root.add_subcommand(
         "compare",
-        "Image-quality numbers of image B (the test) against image A (the reference), over the pixels that\n"
-        "show hair:\n"
+        "Image-quality numbers of image B (the test) against image A (the reference): PSNR, SSIM, FLIP\n"
+        "Computed over the pixels that show hair:\n"
         "  PSNR  in dB (\"inf\" for identical pixels); linear: peak = 99th percentile of A's brightest channel on the mask; tone-mapped: peak 1\n"
         "  SSIM  Wang et al. 2004, 11x11 Gaussian window (sigma 1.5 px), mean over RGB\n"
         "  FLIP  mean of the FLIP error map (Andersson et al. 2020, implemented here from the paper; 0 = identical,\n"
