@@ -3,6 +3,7 @@
 # and builds, then does what was asked:
 #   ./setup.sh render      build (release) and render the embedded default scene to coif-default.png
 #   ./setup.sh test        build (release) and run the whole test suite (what CI runs)
+#   ./setup.sh test-slow   build (release) and run the slow validation (label "slow": brute-force checks)
 #   ./setup.sh test-asan   build the asan preset (AddressSanitizer + UBSan) and run the suite under it
 #   ./setup.sh build       install and build only
 set -euo pipefail
@@ -37,7 +38,9 @@ case "$action" in
              echo "setup: wrote $(pwd)/coif-default.png" ;;
   test)      build release
              ctest --preset release ;;
+  test-slow) build release
+             ctest --preset release-slow ;;
   test-asan) build asan
              ctest --preset asan ;;
-  *)         echo "usage: $0 [build|render|test|test-asan]" >&2; exit 2 ;;
+  *)         echo "usage: $0 [build|render|test|test-slow|test-asan]" >&2; exit 2 ;;
 esac
