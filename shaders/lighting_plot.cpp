@@ -108,9 +108,10 @@ std::string plot_description(const std::string& name, const Plot& plot) {
     return out.str();
 }
 
-std::vector<std::pair<std::string, Plot>> fig3_plots() {
+std::vector<std::pair<std::string, Plot>> fig3_plots(const HairParams& params) {
     using namespace glsl;
-    const HairParams p = linked_hair_params(1.55f, vec3(0.2f), -0.1309f, 0.1309f, 1.0f, 0.15f);
+    validate(params, "lighting plot");
+    const HairParams p = params;
     const LightingConfig cfg = default_config(4);
     LutBinding bind(global_lighting_tables().set());
     vec4 f0123, f45;
@@ -122,7 +123,7 @@ std::vector<std::pair<std::string, Plot>> fig3_plots() {
 
     for (int lobe : {LOBE_TT, LOBE_TRT}) {
         Plot plot;
-        plot.title = lobe == LOBE_TT ? "N_TT: exact vs one circular Gaussian (000 eq. 16), sigma_a = 0.2"
+        plot.title = lobe == LOBE_TT ? "N_TT: exact vs one circular Gaussian (000 eq. 16), red channel"
                                      : "N_TRT: exact (smoothed by w_c) vs three/one circular Gaussians (000 eq. 20)";
         plot.x_label = "phi (rad)";
         plot.y_label = "N (1/rad)";

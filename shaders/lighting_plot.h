@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "models/core/image.h"
+#include "shaders/lighting.h"
 
 namespace coif::shading {
 
@@ -29,7 +30,8 @@ Image render_plot(const Plot& plot, int width, int height);
 std::string plot_csv(const Plot& plot);
 std::string plot_description(const std::string& name, const Plot& plot);
 
-// The four plots of 000 Fig. 3 (file stem → plot): n_tt, n_trt, t_taylor, quadrature_integrand.
-std::vector<std::pair<std::string, Plot>> fig3_plots();
+// The four plots of 000 Fig. 3 (file stem → plot): n_tt, n_trt, t_taylor, quadrature_integrand, for
+// `params` (the T plot uses σa = 0.2, 0.6, 1.0 as in the paper whatever params.sigma_a is).
+std::vector<std::pair<std::string, Plot>> fig3_plots(const HairParams& params);
 
 }  // namespace coif::shading

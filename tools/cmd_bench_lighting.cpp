@@ -22,7 +22,7 @@ using namespace coif::shading;
 
 struct BenchOptions {
     int points = 16384, lights = 16, segments = 4, repeats = 3;
-    bool multiple = true, json = false, cpu_only = false;
+    bool multiple = true, json = false, cpu_only = false, paper = false;
 };
 
 GLuint upload_lut(const LutImage& img) {
@@ -54,11 +54,12 @@ void add_bench_lighting(CLI::App& root) {
     cmd->add_option("--repeats", o->repeats, "Timed GPU dispatches (default 3)")->check(CLI::Range(1, 1000));
     cmd->add_flag("!--no-multiple", o->multiple, "Single scattering only");
     cmd->add_flag("--cpu-only", o->cpu_only, "Skip the GL benchmark");
+    cmd->add_flag("--paper", o->paper, "The paper's variant (Schlick, sqrt(pi) lambda, Taylor T, one-Gaussian N_TT) instead of ours");
     coif::cli::add_json_flag(cmd, o->json);
     coif::cli::examples(cmd, "  coif bench lighting\n  coif bench lighting --points 65536 --lights 40 --json");
     cmd->callback([o] {
         const HairParams params = default_hair_params();
-        const LightingConfig config = default_config(o->segments);
+        const LightingConfig config = o->paper ? paper_config(o->segments) : default_config(o->segments);
         const LightingEvaluator eval(params, config);
         std::mt19937_64 rng(5);
         std::uniform_real_distribution<float> U(0.0f, 1.0f);
@@ -92,7 +93,8 @@ void add_bench_lighting(CLI::App& root) {
         const double pairs = double(points.size()) * double(lights.size());
         const auto cost = check::count_fetches(o->segments);
 
-        nlohmann::json result = {{"points", o->points},
+        nlohmann::json result = {{"variant", o->paper ? "paper" : "improved"},
+                                 {"points", o->points},
                                  {"lights", o->lights},
                                  {"segments", o->segments},
                                  {"multiple_scattering", o->multiple},
@@ -172,7 +174,8 @@ void add_bench_lighting(CLI::App& root) {
             coif::cli::print_json(result);
             return;
         }
-        std::printf("SRBF lighting throughput: %d points x %d lights, m = %d, %s\n", o->points, o->lights, o->segments,
+        std::printf("SRBF lighting throughput (%s variant): %d points x %d lights, m = %d, %s\n",
+                    o->paper ? "paper" : "improved", o->points, o->lights, o->segments,
                     o->multiple ? "single + multiple scattering" : "single scattering only");
         std::printf("  tables at start-up       %.3f s (global), %.3f s (dual-scattering 1D tables)\n",
                     result["tables_build_seconds"].get<double>(), result["ms_tables_build_seconds"].get<double>());

@@ -126,6 +126,8 @@ void add_lighting(CLI::App& root) {
 
     struct PlotOptions {
         std::string out;
+        float eta = 1.55f, alpha_R = -7.5f, beta_R = 7.5f, ecc = 1.0f, w_c = 0.15f;
+        std::vector<float> sigma_a{0.2f, 0.2f, 0.2f};
     };
     auto po = std::make_shared<PlotOptions>();
     CLI::App* plot = lighting->add_subcommand(
@@ -134,10 +136,21 @@ void add_lighting(CLI::App& root) {
         "(three or one) at theta_d = 0, pi/6, pi/3; the attenuation T(h) with its Taylor expansion and our\n"
         "interpolation for sigma_a = 0.2, 0.6, 1.0; and the integrand of the linear quadrature\n"
         "N_t cos^2(theta_i)/cos^2(theta_d) for lambda' = 0.5. Exact curves solid, approximations dashed; each PNG\n"
-        "has a CSV of its data and README.txt lists colours and axes. eta = 1.55, w_c = 0.15 rad.");
+        "has a CSV of its data and README.txt lists colours and axes. Bad parameter values are refused (exit 1).");
     plot->add_option("-o,--out", po->out, "Output folder (created if missing)")->required();
-    coif::cli::examples(plot, "  coif lighting plot -o lighting_plots/");
+    plot->add_option("--eta", po->eta, "Index of refraction (default 1.55; must exceed 1)");
+    plot->add_option("--sigma-a", po->sigma_a, "Absorption per unit fibre radius, r g b (default 0.2 0.2 0.2; >= 0)")
+        ->expected(3);
+    plot->add_option("--alpha-r", po->alpha_R, "Longitudinal shift alpha_R in degrees (default -7.5; TT, TRT linked)");
+    plot->add_option("--beta-r", po->beta_R, "Longitudinal width beta_R in degrees (default 7.5; TT, TRT linked; > 0)");
+    plot->add_option("--ecc", po->ecc, "Eccentricity a (default 1 = circular; in (0.707, 1.414))");
+    plot->add_option("--wc", po->w_c, "TRT caustic width w_c in radians (default 0.15; > 0)");
+    coif::cli::examples(plot, "  coif lighting plot -o lighting_plots/\n  coif lighting plot -o dark/ --sigma-a 1.2 1.6 2.4 --eta 1.6");
     plot->callback([po] {
+        const HairParams params = linked_hair_params(po->eta, glm::vec3(po->sigma_a[0], po->sigma_a[1], po->sigma_a[2]),
+                                                     float(coif::cli::radians(po->alpha_R)),
+                                                     float(coif::cli::radians(po->beta_R)), po->ecc, po->w_c);
+        validate(params, "coif lighting plot options");
         const fs::path dir(po->out);
         std::error_code ec;
         fs::create_directories(dir, ec);
@@ -145,7 +158,7 @@ void add_lighting(CLI::App& root) {
         std::string readme = "coif lighting plot: exact (solid) vs approximate (dashed) terms of the SRBF lighting (000 Fig. 3).\n"
                              "PNG tone map: linear 8-bit, white background. Axes: x from left to right, y from bottom to top;\n"
                              "ranges below. Colours per series as listed.\n\n";
-        for (const auto& [name, p] : fig3_plots()) {
+        for (const auto& [name, p] : fig3_plots(params)) {
             coif::write_image(dir / (name + ".png"), render_plot(p, 900, 560));
             coif::write_file_atomic(dir / (name + ".csv"), plot_csv(p));
             readme += plot_description(name, p) + "\n";

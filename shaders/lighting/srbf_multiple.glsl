@@ -72,6 +72,19 @@ COIF_FN vec3 srbf_N_global(int lobe, HairParams hp, LightingConfig cfg, vec4 f01
         return vec3(max(dot(c_lo, b_lo - a_lo) + dot(c_hi, b_hi - a_hi), 0.0) * COIF_INV_PI);
     }
     vec3 r = vec3(0.0);
+    if (lobe == LOBE_TT && !cfg.paper_tt) {
+        // Ours: the exact N_TT over the half circle, i.e. ½ ∫ A_TT dh between the inverted window edges
+        // (the window [Δ-π/2, Δ+π/2] against N_TT's support |φ-π| < reach, in up to two pieces).
+        float eta_p = eta_prime(hp.eta, theta_d);
+        float reach = COIF_PI - 2.0 * safe_asin(1.0 / eta_p);
+        float dc = wrap_pi(dphi - COIF_PI);
+        for (int k = -1; k <= 1; ++k) {
+            float lo = max(dc + float(k) * COIF_TWO_PI - COIF_HALF_PI, -reach);
+            float hi = min(dc + float(k) * COIF_TWO_PI + COIF_HALF_PI, reach);
+            if (hi > lo) r += N_TT_interval(hp.eta, hp.sigma_a, theta_d, lo, hi);
+        }
+        return r * COIF_INV_PI;
+    }
     if (lobe == LOBE_TT) {
         vec3 b;
         vec3 lam;

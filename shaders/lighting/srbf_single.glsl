@@ -149,13 +149,9 @@ COIF_FN void N_TT_fit(float eta, vec3 sigma_a, float theta_d, bool paper_norm, O
 // the kernel is nearly flat over N_TT's support, the Gaussian of 000 eq. 16 is accurate and used;
 // in between the two are blended. (Thresholds measured: TT error 10 % -> 1.2 % of TT's energy.)
 
-// N_TT(θd, ψ) exactly: the single root h of φ(1,h) = ψ (φ decreases monotonically in h) by Newton
-// steps safeguarded with bisection, then ½ A_TT(h) / |dφ/dh| (000 eq. 9, 15).
-COIF_FN vec3 N_TT_pointwise(float eta, vec3 sigma_a, float theta_d, float psi) {
-    float eta_p = eta_prime(eta, theta_d);
-    float d = wrap_pi(psi - COIF_PI);
-    float reach = COIF_PI - 2.0 * safe_asin(1.0 / eta_p);
-    if (abs(d) >= reach) return vec3(0.0);
+// The offset h with φ(1, h) - π = d for |d| < π - 2 asin(1/η') (TT's φ decreases monotonically in
+// h): Newton steps safeguarded by bisection.
+COIF_FN float tt_invert(float d, float eta_p) {
     float lo = -1.0;
     float hi = 1.0;
     float h = clamp(d / (2.0 / eta_p - 2.0), -0.999, 0.999);
@@ -166,10 +162,38 @@ COIF_FN vec3 N_TT_pointwise(float eta, vec3 sigma_a, float theta_d, float psi) {
         float hn = h - f / min(df, -1e-6);
         h = (hn >= lo && hn <= hi) ? hn : 0.5 * (lo + hi);
     }
+    return h;
+}
+
+// N_TT(θd, ψ) exactly: ½ A_TT(h) / |dφ/dh| at the single root h of φ(1,h) = ψ (000 eq. 9, 15).
+COIF_FN vec3 N_TT_pointwise(float eta, vec3 sigma_a, float theta_d, float psi) {
+    float eta_p = eta_prime(eta, theta_d);
+    float d = wrap_pi(psi - COIF_PI);
+    float reach = COIF_PI - 2.0 * safe_asin(1.0 / eta_p);
+    if (abs(d) >= reach) return vec3(0.0);
+    float h = tt_invert(d, eta_p);
     float df = 2.0 - 2.0 * sqrt(max(1.0 - h * h, 1e-12)) / sqrt(eta_p * eta_p - h * h);
     // |dφ/dh| = 2/sqrt(1-h²) - 2/sqrt(η'²-h²); dividing by it as (…)·sqrt(1-h²) keeps h → ±1 finite.
     vec3 a = attenuation_A(LOBE_TT, eta, sigma_a, theta_d, h);
     return 0.5 * a * sqrt(max(1.0 - h * h, 0.0)) / max(df, 1e-6);
+}
+
+// ∫ N_TT(θd, ψ) dψ over ψ - π ∈ [d0, d1] (|d| < π - 2 asin(1/η')): in h it is ½ ∫ A_TT dh between the
+// inverted end points, by 4-point Gauss-Legendre.
+COIF_FN vec3 N_TT_interval(float eta, vec3 sigma_a, float theta_d, float d0, float d1) {
+    float eta_p = eta_prime(eta, theta_d);
+    float ha = tt_invert(d1, eta_p);
+    float hb = tt_invert(d0, eta_p);
+    float mid = 0.5 * (ha + hb);
+    float half_w = 0.5 * (hb - ha);
+    vec3 acc = vec3(0.0);
+    for (int i = 0; i < 2; ++i) {
+        float t = i == 0 ? 0.339981043584856 : 0.861136311594053;
+        float w = i == 0 ? 0.652145154862546 : 0.347854845137454;
+        acc += w * (attenuation_A(LOBE_TT, eta, sigma_a, theta_d, mid - half_w * t) +
+                    attenuation_A(LOBE_TT, eta, sigma_a, theta_d, mid + half_w * t));
+    }
+    return 0.5 * half_w * acc;
 }
 
 const float TT_HYBRID_LO = 1.0;

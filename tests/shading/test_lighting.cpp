@@ -243,3 +243,29 @@ TEST(Evaluator, SumsLightsAndAppliesShadowTerms) {
 }
 
 }  // namespace
+
+#include <filesystem>
+
+#include "tests/common/run.h"
+
+namespace {
+
+TEST(LightingCli, PlotWritesFigureAndRefusesBadParameters) {
+    const auto dir = coif::test::scratch_dir("lighting-plot");
+    const auto ok = coif::test::run_coif("lighting plot -o '" + dir.string() + "'");
+    ASSERT_EQ(ok.exit_code, 0) << ok.err;
+    for (const char* name : {"n_tt", "n_trt", "t_taylor", "quadrature_integrand"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir / (std::string(name) + ".png"))) << name;
+        EXPECT_TRUE(std::filesystem::exists(dir / (std::string(name) + ".csv"))) << name;
+    }
+    // Parameter values outside the physical range: exit 1 with the field named, nothing new written.
+    const auto bad_dir = coif::test::scratch_dir("lighting-plot-bad");
+    for (const std::string args : {"--eta 1", "--sigma-a 0.1 -0.2 0.3", "--beta-r 0", "--eta nan"}) {
+        const auto r = coif::test::run_coif("lighting plot -o '" + bad_dir.string() + "' " + args);
+        EXPECT_EQ(r.exit_code, 1) << args;
+        EXPECT_NE(r.err.find("coif: error:"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(bad_dir / "n_tt.png")) << args;
+    }
+}
+
+}  // namespace
