@@ -541,7 +541,7 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (!j.is_object()) throw Error(path, "JSON /", "expected an object of parameters");
     static const std::vector<std::string> known = {
         "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
-        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sigma_f2"};
+        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sigma_f2", "sort_clusters"};
     for (const auto& [key, value] : j.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
             throw Error(path, "JSON /" + key, "unknown parameter (known: eta, sigma_a, alpha_R_deg, beta_R_deg, …)");
@@ -599,6 +599,10 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (auto v = number("debug")) {
         if (*v < 0 || *v > 3 || *v != std::floor(*v)) throw Error(path, "JSON /debug", "must be 0, 1, 2 or 3");
         s.debug = static_cast<int>(*v);
+    }
+    if (j.contains("sort_clusters")) {
+        if (!j["sort_clusters"].is_boolean()) throw Error(path, "JSON /sort_clusters", "expected true or false");
+        s.sort_clusters = j["sort_clusters"].get<bool>();
     }
     if (j.contains("multiple")) {
         if (!j["multiple"].is_boolean()) throw Error(path, "JSON /multiple", "expected true or false");

@@ -61,7 +61,7 @@ struct ShellSettings {
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
-//    "debug": 0..3 (ShellSettings::debug)}
+//    "debug": 0..3 (ShellSettings::debug), "sigma_f2", "sort_clusters"}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});

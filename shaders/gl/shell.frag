@@ -57,27 +57,30 @@ vec4 atlas_fetch(uint tile, vec2 p) {
     return textureLod(u_records, (origin + p) * u_atlas_inv_size, 0.0);
 }
 
-// α and the 9 re coefficients (a0, a1, b1, …, a4, b4) of one sector at atlas position p.
-void sector_values(uint sector, vec2 p, out float alpha, out float c[9]) {
+// α and the 9 re coefficients of one sector at atlas position p, as three vec4:
+// t0 = (α, a0, a1, b1), t1 = (a2, b2, a3, b3), t2 = (a4, b4, 0, 0). No arrays: llvmpipe spills them.
+void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
     ShellSector s = sectors[sector];
-    alpha = 0.0;
-    for (int q = 0; q < 9; ++q) c[q] = 0.0;
+    t0 = vec4(0.0);
+    t1 = vec4(0.0);
+    t2 = vec4(0.0);
     float wsum = 0.0;
     for (int n = 0; n < u_neighbours; ++n) {
         float w = s.weight[n];
         uint base = s.id[n] * 3u;
-        vec4 t0 = atlas_fetch(base, p);
-        vec4 t1 = atlas_fetch(base + 1u, p);
-        vec4 t2 = atlas_fetch(base + 2u, p);
-        alpha += w * t0.x;
-        c[0] += w * t0.y; c[1] += w * t0.z; c[2] += w * t0.w;
-        c[3] += w * t1.x; c[4] += w * t1.y; c[5] += w * t1.z; c[6] += w * t1.w;
-        c[7] += w * t2.x; c[8] += w * t2.y;
+        t0 += w * atlas_fetch(base, p);
+        t1 += w * atlas_fetch(base + 1u, p);
+        t2 += w * atlas_fetch(base + 2u, p);
         wsum += w;
     }
     float inv = wsum > 0.0 ? 1.0 / wsum : 0.0;
-    alpha *= inv;
-    for (int q = 0; q < 9; ++q) c[q] *= inv;
+    t0 *= inv;
+    t1 *= inv;
+    t2 *= inv;
+}
+
+vec4 lighting_fetch(float lx, float ly0, int m) {
+    return textureLod(u_lighting, vec2(lx, (ly0 + float(m)) / float(u_lighting_height)), 0.0);
 }
 
 void main() {
@@ -100,40 +103,47 @@ void main() {
     float view = theta_v / TWO_PI * float(u_views);
     view = mod(view, float(u_views));
     vec2 p = vec2(x * float(u_hrir_length), view + 0.5);
-    float a_top, a_bottom;
-    float c_top[9];
-    float c_bottom[9];
-    sector_values(top, p, a_top, c_top);
-    sector_values(bottom, p, a_bottom, c_bottom);
-    float alpha = clamp(mix(a_top, a_bottom, gamma), 0.0, 1.0);
-    float c[9];
-    for (int q = 0; q < 9; ++q) c[q] = mix(c_top[q], c_bottom[q], gamma);
+    vec4 top0, top1, top2, bot0, bot1, bot2;
+    sector_values(top, p, top0, top1, top2);
+    sector_values(bottom, p, bot0, bot1, bot2);
+    vec4 t0 = mix(top0, bot0, gamma);
+    vec4 t1 = mix(top1, bot1, gamma);
+    vec2 t2 = mix(top2.xy, bot2.xy, gamma);
+    float alpha = clamp(t0.x, 0.0, 1.0);
     float tau = exp(-u_kappa_shadow * mix(sectors[top].shadow.x, sectors[bottom].shadow.x, gamma));
 
     if (u_debug == 1) { o_color = vec4(vec3(alpha), alpha); return; }
-    if (u_debug == 2) { o_color = vec4(vec3(max(c[0], 0.0) * u_re_scale * tau), alpha); return; }
+    if (u_debug == 2) { o_color = vec4(vec3(max(t0.y, 0.0) * u_re_scale * tau), alpha); return; }
 
     // Lighting coefficients at this t (linear between lighting rows), turned to this fragment's r.
+    // Texels: L0 = (C0.rgb, C1.r), L1 = (C1.gb, S1.rg), L2 = (S1.b, C2.rgb), L3 = (S2.rgb, C3.r),
+    //         L4 = (C3.gb, S3.rg), L5 = (S3.b, C4.rgb), L6 = (S4.rgb, 0).
     float lx = (clamp(v_texcoord.y, 0.0, 1.0) * float(u_lighting_rows - 1) + 0.5) / float(u_lighting_rows);
     float ly0 = float(v_info.y * 7u) + 0.5;
-    float L[28];
-    for (int m = 0; m < 7; ++m) {
-        vec4 q = textureLod(u_lighting, vec2(lx, (ly0 + float(m)) / float(u_lighting_height)), 0.0);
-        L[4 * m] = q.x; L[4 * m + 1] = q.y; L[4 * m + 2] = q.z; L[4 * m + 3] = q.w;
-    }
+    vec4 L0 = lighting_fetch(lx, ly0, 0);
+    vec4 L1 = lighting_fetch(lx, ly0, 1);
+    vec4 L2 = lighting_fetch(lx, ly0, 2);
+    vec4 L3 = lighting_fetch(lx, ly0, 3);
+    vec4 L4 = lighting_fetch(lx, ly0, 4);
+    vec4 L5 = lighting_fetch(lx, ly0, 5);
+    vec4 L6 = lighting_fetch(lx, ly0, 6);
+    vec3 C0 = L0.xyz;
+    if (u_debug == 3) { o_color = vec4(C0 * alpha * tau, alpha); return; }
+    vec3 C1 = vec3(L0.w, L1.xy), S1 = vec3(L1.zw, L2.x);
+    vec3 C2 = L2.yzw, S2 = L3.xyz;
+    vec3 C3 = vec3(L3.w, L4.xy), S3 = vec3(L4.zw, L5.x);
+    vec3 C4 = L5.yzw, S4 = L6.xyz;
     vec3 r0 = v_axis_normal - dot(v_axis_normal, T) * T;
     float psi_r = sector_azimuth(r, T, normalize(r0));
-    if (u_debug == 3) { o_color = vec4(vec3(L[0], L[1], L[2]) * alpha * tau, alpha); return; }
-    vec3 sum = c[0] * vec3(L[0], L[1], L[2]);
-    for (int h = 1; h <= 4; ++h) {
-        int o = 3 + 6 * (h - 1);
-        vec3 C = vec3(L[o], L[o + 1], L[o + 2]);
-        vec3 S = vec3(L[o + 3], L[o + 4], L[o + 5]);
-        float ch = cos(float(h) * psi_r);
-        float sh = sin(float(h) * psi_r);
-        vec3 Cr = C * ch + S * sh;  // Σ w_j cos h(ψj − ψr)
-        vec3 Sr = S * ch - C * sh;  // Σ w_j sin h(ψj − ψr)
-        sum += c[2 * h - 1] * Cr + c[2 * h] * Sr;
-    }
+    // Σ_j w_j cos h(ψj − ψr) = C_h cos hψr + S_h sin hψr;  Σ_j w_j sin h(ψj − ψr) = S_h cos hψr − C_h sin hψr.
+    vec2 e1 = vec2(cos(psi_r), sin(psi_r));
+    vec2 e2 = vec2(e1.x * e1.x - e1.y * e1.y, 2.0 * e1.x * e1.y);
+    vec2 e3 = vec2(e2.x * e1.x - e2.y * e1.y, e2.x * e1.y + e2.y * e1.x);
+    vec2 e4 = vec2(e2.x * e2.x - e2.y * e2.y, 2.0 * e2.x * e2.y);
+    vec3 sum = t0.y * C0;
+    sum += t0.z * (C1 * e1.x + S1 * e1.y) + t0.w * (S1 * e1.x - C1 * e1.y);
+    sum += t1.x * (C2 * e2.x + S2 * e2.y) + t1.y * (S2 * e2.x - C2 * e2.y);
+    sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
+    sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
     o_color = vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);
 }

@@ -11,6 +11,7 @@
 #include "online/gl_context.h"
 #include "online/shell_renderer.h"
 #include "shaders/lighting.h"
+#include "tests/common/run.h"
 
 namespace coif {
 namespace {
@@ -82,6 +83,128 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     // texture fetches at GL's 8-bit sub-texel precision, so allow 1 %.
     EXPECT_LT(worst, 0.01) << "multiple scattering " << multiple;
     }
+}
+
+
+std::vector<SrbfLight> two_lights() {
+    SrbfLight a, b;
+    a.L = glm::vec3(2.0f, 1.8f, 1.5f);
+    a.omega = glm::normalize(glm::vec3(0.2f, 0.8f, 0.6f));
+    a.lambda = 0.3f;
+    b.L = glm::vec3(0.3f, 0.4f, 0.6f);
+    b.omega = glm::normalize(glm::vec3(-0.5f, 0.3f, -0.4f));
+    b.lambda = 1.0f;
+    return {a, b};
+}
+
+double mean_abs_difference(const Image& a, const Image& b) {
+    double d = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) d += std::abs(a.pixels[i] - b.pixels[i]);
+    return d / static_cast<double>(a.pixels.size());
+}
+
+TEST(ShellRenderer, RenderingIsDeterministic) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer);
+    gl::ShellSettings s;
+    s.samples = 1;
+    const Image a = renderer.render(camera, s);
+    const Image b = renderer.render(camera, s);
+    // Same inputs, same GL state: bit-identical (no tolerance; llvmpipe is deterministic).
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    EXPECT_EQ(a.pixels, b.pixels);
+}
+
+TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer);
+    gl::ShellSettings s;
+    s.samples = 1;
+    const Image base = renderer.render(camera, s);
+    gl::ShellSettings red = s;
+    red.hair = shading::linked_hair_params(1.55f, glm::vec3(0.1f, 1.5f, 3.0f), s.hair.alpha_R, s.hair.beta_R, 1.0f, s.hair.w_c);
+    const Image changed = renderer.render(camera, red);
+    gl::ShellSettings dark = s;
+    dark.kappa_shadow = 3.0f;
+    const Image shadowed = renderer.render(camera, dark);
+    const Image back = renderer.render(camera, s);
+    // A change of σa or κ_shadow changes the image at once. Hair covers ~9 % of the frame with values
+    // ~0.07, so half-float rounding (2^-11 relative) moves the mean |Δ| by ~3e-6; 1e-4 is 30× that.
+    // Going back to the old parameters gives the old image exactly.
+    EXPECT_GT(mean_abs_difference(base, changed), 1e-4);
+    EXPECT_GT(mean_abs_difference(base, shadowed), 1e-4);
+    EXPECT_EQ(base.pixels, back.pixels);
+}
+
+TEST(ShellRenderer, DefaultLightsShowLitHair) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer, 120, 80);
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.background = glm::vec3(0.0f);
+    const Image img = renderer.render(camera, s);
+    // The cluster (2 cm × 10 cm, orbit framing) covers ~9 % of the frame and is lit: more than 5 % of the
+    // pixels carry light, the lit ones are warm (σa absorbs blue most: R > B), and nothing is NaN.
+    int lit = 0;
+    double r = 0, b = 0;
+    for (int i = 0; i < img.width * img.height; ++i) {
+        const float* p = &img.pixels[static_cast<std::size_t>(i) * 4];
+        ASSERT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
+        if (p[0] + p[1] + p[2] > 1e-3f) {
+            ++lit;
+            r += p[0];
+            b += p[2];
+        }
+    }
+    std::printf("lit pixels %d of %d, mean R %.4f B %.4f\n", lit, img.width * img.height, r / std::max(lit, 1), b / std::max(lit, 1));
+    EXPECT_GT(lit, img.width * img.height / 20);
+    EXPECT_GT(r, b);
+}
+
+TEST(ShellRenderer, BadParametersFileIsRefusedAtItsKey) {
+    const auto dir = test::scratch_dir("shell-params");
+    const auto write = [&](const char* name, const char* text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    };
+    EXPECT_THROW(gl::read_shell_settings(write("a.json", "{\"eta\": 0.5}")), Error);
+    EXPECT_THROW(gl::read_shell_settings(write("b.json", "{\"sigma_a\": [1, 2]}")), Error);
+    EXPECT_THROW(gl::read_shell_settings(write("c.json", "{\"nonsense\": 1}")), Error);
+    EXPECT_THROW(gl::read_shell_settings(write("d.json", "{\"neighbours\": 9}")), Error);
+    EXPECT_THROW(gl::read_shell_settings(write("e.json", "not json")), Error);
+    try {
+        gl::read_shell_settings(write("f.json", "{\"kappa_shadow\": -1}"));
+        FAIL() << "negative kappa_shadow accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("kappa_shadow"), std::string::npos) << e.what();
+    }
+    const gl::ShellSettings ok = gl::read_shell_settings(write("g.json", "{\"beta_R_deg\": 10, \"lobes\": {\"TT\": false}}"));
+    EXPECT_NEAR(ok.hair.beta_TRT, 2.0f * 10.0f * 0.0174533f, 1e-5f);  // 000's link β_TRT = 2 β_R
+    EXPECT_EQ(ok.lobes, 5);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ShellRenderer, CoifRenderRefusesBadInputAndWritesNothing) {
+    const auto dir = test::scratch_dir("shell-cli");
+    const std::string out = (dir / "out.png").string();
+    std::ofstream(dir / "bad.db") << "COIFHRIR but nothing else";
+    std::ofstream(dir / "bad.json") << "{\"eta\": \"high\"}";
+    for (const std::string& args : {"--db '" + (dir / "missing.db").string() + "'", "--db '" + (dir / "bad.db").string() + "'",
+                                   "--params '" + (dir / "bad.json").string() + "'",
+                                   "--env '" + (dir / "missing.json").string() + "'",
+                                   "--style '" + (dir / "missing_style.json").string() + "'"}) {
+        const auto r = test::run_coif("render " + args + " -o '" + out + "'");
+        EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find("coif: error"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << args;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 }  // namespace
