@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -113,7 +114,8 @@ glm::mat3 style_orientation(const HairStyle& style) {
     return hang_axis_rotation(st);
 }
 
-ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation)
+ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
+                             int lighting_rows_per_hsv)
     : impl_(std::make_unique<Impl>()) {
     const auto start = std::chrono::steady_clock::now();
     Impl& m = *impl_;
@@ -262,7 +264,9 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     stats_.atlas_height = m.atlas_h;
 
     // ---- clusters: instances, lighting samples, bounds ------------------------------------------------
-    m.lighting_rows = L.s_t * L.mesh_t + 1;
+    if (lighting_rows_per_hsv < 0 || lighting_rows_per_hsv > kMaxMeshSubdivision)
+        throw Error::parameter("lighting rows per HSV", "must be 0.." + std::to_string(kMaxMeshSubdivision));
+    m.lighting_rows = L.s_t * (lighting_rows_per_hsv > 0 ? lighting_rows_per_hsv : L.mesh_t) + 1;
     std::vector<GpuInstance> instances;
     std::vector<GpuSample> samples;
     std::vector<std::uint32_t> cluster_ids;
@@ -369,8 +373,17 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
 
     // ---- lighting pass ---------------------------------------------------------------------------
     if (!floor_only) {
-        const bool same = m.have_ms && std::memcmp(&m.ms_params, &s.hair, sizeof(s.hair)) == 0 &&
-                          std::memcmp(&m.ms_config, &s.config, sizeof(s.config)) == 0;
+        const auto& a = m.ms_params;
+        const auto& b = s.hair;
+        const auto& ca = m.ms_config;
+        const auto& cb = s.config;
+        const bool same = m.have_ms && a.eta == b.eta && a.sigma_a == b.sigma_a && a.alpha_R == b.alpha_R &&
+                          a.alpha_TT == b.alpha_TT && a.alpha_TRT == b.alpha_TRT && a.beta_R == b.beta_R &&
+                          a.beta_TT == b.beta_TT && a.beta_TRT == b.beta_TRT && a.ecc_a == b.ecc_a && a.w_c == b.w_c &&
+                          a.delta_eta_p == b.delta_eta_p && a.d_b == b.d_b && ca.segments == cb.segments &&
+                          ca.paper_schlick == cb.paper_schlick && ca.paper_norm == cb.paper_norm &&
+                          ca.paper_theta_gauss == cb.paper_theta_gauss && ca.paper_tt == cb.paper_tt;
+        if (!same) std::fprintf(stderr, "coif: building the dual-scattering tables of these hair parameters\n");
         if (!same) {
             const shading::LightingEvaluator ev(s.hair, s.config);  // validates, builds the dual-scattering tables
             const shading::LutSet ms = ev.ms_tables().set();

@@ -84,7 +84,8 @@ struct ShellTimings {  // GPU time of the last draw, milliseconds (GL_TIME_ELAPS
 class ShellRenderer {
 public:
     // Needs a current GL 4.5 context. `satf` (and its database) must outlive the renderer.
-    ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation);
+    // `lighting_rows_per_hsv`: lighting samples per HSV along t (0: the layout's mesh_t, one per mesh row).
+    ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation, int lighting_rows_per_hsv = 0);
     ~ShellRenderer();
     ShellRenderer(const ShellRenderer&) = delete;
     ShellRenderer& operator=(const ShellRenderer&) = delete;

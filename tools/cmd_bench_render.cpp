@@ -18,7 +18,7 @@ namespace {
 struct BenchRenderOptions {
     coif::cli::SceneOptions scene;
     std::string db, env, params;
-    int frames = 10, samples = 1;
+    int frames = 10, samples = 1, lighting_rows = 0;
     bool json = false;
 };
 
@@ -60,6 +60,9 @@ void add_bench_render(CLI::App& root) {
     cmd->add_option("--env", o->env, "SRBF lights JSON or an environment map; default: the embedded 40 lights");
     cmd->add_option("--params", o->params, "Scattering parameters JSON (see coif render)");
     cmd->add_option("--frames", o->frames, "Frames measured (after one warm-up frame)")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--lighting-rows", o->lighting_rows,
+                   "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
+        ->check(CLI::Range(0, 64))->capture_default_str();
     cmd->add_option("--samples", o->samples, "MSAA samples per pixel")->check(CLI::Range(1, 16))->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     coif::cli::examples(cmd, "  coif bench render\n"
@@ -74,7 +77,7 @@ void add_bench_render(CLI::App& root) {
         const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
         const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
         auto context = coif::gl::Context::headless();
-        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style));
+        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style), o->lighting_rows);
         renderer.set_lights(lights);
         const coif::Camera cam = coif::cli::shell_camera(o->scene, renderer);
         coif::gl::RenderTarget target(cam.width, cam.height, GL_RGBA16F, settings.samples);

@@ -26,6 +26,7 @@ struct RenderOptions {
     float exposure = 0.0f;
     bool preview = false;
     int samples = 4;
+    int lighting_rows = 0;
 };
 
 void add_render(CLI::App& root) {
@@ -49,6 +50,9 @@ void add_render(CLI::App& root) {
     render->add_option("--params", o->params,
                        "Scattering parameters JSON (keys: eta, sigma_a, alpha_R_deg, beta_R_deg, …, kappa_shadow, lobes, "
                        "multiple, neighbours; see online/shell_renderer.h); default: 000's brown hair");
+    render->add_option("--lighting-rows", o->lighting_rows,
+                   "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
+        ->check(CLI::Range(0, 64))->capture_default_str();
     render->add_option("--samples", o->samples, "MSAA samples per pixel")->check(CLI::Range(1, 16))->capture_default_str();
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
     render->add_flag("--preview-strands", o->preview, "Draw the strands as GL lines (Kajiya-Kay preview), not the SATF renderer");
@@ -88,7 +92,7 @@ void add_render(CLI::App& root) {
         const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
         const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
         auto context = coif::gl::Context::headless();
-        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style));
+        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style), o->lighting_rows);
         renderer.set_lights(lights);
         const coif::Camera camera = coif::cli::shell_camera(o->scene, renderer);
         const coif::Image image = renderer.render(camera, settings);
