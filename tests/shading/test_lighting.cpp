@@ -98,16 +98,19 @@ TEST(MultipleScattering, MatchesBruteForceDualScattering) {
 }
 
 TEST(SlowMultipleScattering, MatchesBruteForceDualScattering) {
-    const auto rows = check::check_multiple(12, 40, 11);
+    const auto rows = check::check_multiple(8, 30, 11);
     for (const auto& r : rows)
         std::printf("%-16s median %.4f  p95 %.4f  max %.4f  (n=%d)\n", r.term.c_str(), r.stats.median, r.stats.p95, r.stats.max,
                     r.stats.count);
-    // Bound: the global term inherits the single-scattering fits (a few %) plus the separation of
-    // the half-circle integral; the local term replaces Δ̄_b, σ̄_b by their means over the light's
-    // spread (000 eq. 31) and Zinke's terms by the separable form of eq. 33, which we measure at
-    // ~10 % where Δ̄_b varies fast. Median <= 5 %, p95 <= 15 %.
-    EXPECT_LE(rows[2].stats.median, 0.05);
-    EXPECT_LE(rows[2].stats.p95, 0.15);
+    // Bound (energy-weighted, like single scattering): the global term inherits the single-scattering
+    // fits (measured ~0.4 % median, ~4 % p95); the local term replaces Δ̄_b, σ̄_b by their means over
+    // the light's spread (000 eq. 31) and Zinke's ā by the separated eq. 33, measured ~4 % median,
+    // ~8 % p95; it is scaled by d_b and carries less energy than the global term. We assert the sum
+    // at median <= 3 %, p95 <= 8 %, and the local term alone at median <= 8 %, p95 <= 15 %.
+    EXPECT_LE(rows[2].stats.median, 0.03);
+    EXPECT_LE(rows[2].stats.p95, 0.08);
+    EXPECT_LE(rows[1].stats.median, 0.08);
+    EXPECT_LE(rows[1].stats.p95, 0.15);
 }
 
 TEST(Validation, RefusesUnphysicalParameters) {
