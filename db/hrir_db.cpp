@@ -16,12 +16,16 @@
 
 #include "models/core/atomic_file.h"
 #include "models/core/checksum.h"
+#include "models/core/bytes.h"
 #include "models/core/error.h"
 #include "models/core/progress.h"
 
 namespace coif {
 
 namespace fs = std::filesystem;
+
+using bytes::get;
+using bytes::put;
 
 namespace {
 
@@ -35,18 +39,7 @@ constexpr std::uint32_t kFlagShard = 1;
 
 std::size_t align_up(std::size_t x) { return (x + kAlign - 1) / kAlign * kAlign; }
 
-template <class T>
-void put(std::vector<std::byte>& b, T v) {
-    const auto* p = reinterpret_cast<const std::byte*>(&v);
-    b.insert(b.end(), p, p + sizeof(T));
-}
 
-template <class T>
-T get(const std::byte* p) {
-    T v;
-    std::memcpy(&v, p, sizeof(T));
-    return v;
-}
 
 std::string byte_place(std::size_t offset) { return "byte " + std::to_string(offset); }
 

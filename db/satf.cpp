@@ -15,11 +15,15 @@
 
 #include "models/core/atomic_file.h"
 #include "models/core/checksum.h"
+#include "models/core/bytes.h"
 #include "models/core/error.h"
 
 namespace coif {
 
 namespace fs = std::filesystem;
+
+using bytes::get;
+using bytes::put;
 
 namespace {
 
@@ -29,17 +33,6 @@ constexpr std::size_t kIndexHeader = 48;
 constexpr int kLeafMaxSize = 10;  // FLANN's default leaf size for the single k-d tree
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-template <class T>
-void put(std::vector<std::byte>& b, T v) {
-    const auto* p = reinterpret_cast<const std::byte*>(&v);
-    b.insert(b.end(), p, p + sizeof(T));
-}
-template <class T>
-T get(const std::byte* p) {
-    T v;
-    std::memcpy(&v, p, sizeof(T));
-    return v;
-}
 
 std::uint32_t set_id(FeatureSet s) { return static_cast<std::uint32_t>(s); }
 

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "models/core/error.h"
+#include "models/core/json_field.h"
 
 namespace coif {
 
@@ -13,16 +14,6 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kSmoothingCutoff = 3.0;  // the smoothing kernel is cut at 3 widths: exp(−9) ≈ 1e-4
 constexpr double kNegligibleAlpha = 1e-9;
-
-template <class T>
-T field(const nlohmann::json& j, const char* key, const char* where) {
-    if (!j.contains(key)) throw Error({}, std::string(where) + "/" + key, "missing");
-    try {
-        return j.at(key).get<T>();
-    } catch (const nlohmann::json::exception& e) {
-        throw Error({}, std::string(where) + "/" + key, e.what());
-    }
-}
 
 int wrap(int i, int n) {
     i %= n;
@@ -62,16 +53,16 @@ nlohmann::json to_json(const TracerParams& p) {
 TracerParams tracer_params_from_json(const nlohmann::json& j) {
     const char* w = "JSON /tracer";
     TracerParams p;
-    p.kappa = field<double>(j, "kappa_per_lambda", w);
-    p.kd = field<double>(j, "kd", w);
-    p.ks = field<double>(j, "ks", w);
-    p.exponent = field<double>(j, "phong_exponent", w);
-    p.light_attenuation = field<bool>(j, "light_attenuation", w);
-    p.smoothing_ratio = field<double>(j, "smoothing_ratio", w);
-    p.step_per_cell = field<double>(j, "step_per_cell", w);
-    p.grazing_cap = field<double>(j, "grazing_cap_depths", w);
-    p.gradient_floor = field<double>(j, "gradient_floor", w);
-    p.gradient_rho0 = field<double>(j, "gradient_rho0", w);
+    p.kappa = json_field<double>(j, "kappa_per_lambda", w);
+    p.kd = json_field<double>(j, "kd", w);
+    p.ks = json_field<double>(j, "ks", w);
+    p.exponent = json_field<double>(j, "phong_exponent", w);
+    p.light_attenuation = json_field<bool>(j, "light_attenuation", w);
+    p.smoothing_ratio = json_field<double>(j, "smoothing_ratio", w);
+    p.step_per_cell = json_field<double>(j, "step_per_cell", w);
+    p.grazing_cap = json_field<double>(j, "grazing_cap_depths", w);
+    p.gradient_floor = json_field<double>(j, "gradient_floor", w);
+    p.gradient_rho0 = json_field<double>(j, "gradient_rho0", w);
     if (!(p.kappa >= 0 && p.exponent >= 1 && p.smoothing_ratio >= 0 && p.step_per_cell > 0 && p.step_per_cell <= 4 &&
           p.grazing_cap >= 1 && p.gradient_floor >= 0 && p.gradient_rho0 > 0))
         throw Error({}, w, "a tracer parameter is out of range");
@@ -90,10 +81,10 @@ nlohmann::json to_json(const AngleGrids& g) {
 AngleGrids angle_grids_from_json(const nlohmann::json& j) {
     const char* w = "JSON /grids";
     AngleGrids g;
-    g.views = field<int>(j, "views", w);
-    g.hrir_length = field<int>(j, "hrir_length", w);
-    g.fourier_order = field<int>(j, "fourier_order", w);
-    g.light_samples = field<int>(j, "light_samples", w);
+    g.views = json_field<int>(j, "views", w);
+    g.hrir_length = json_field<int>(j, "hrir_length", w);
+    g.fourier_order = json_field<int>(j, "fourier_order", w);
+    g.light_samples = json_field<int>(j, "light_samples", w);
     if (g.views < 4 || g.views > 1024 || g.hrir_length < 2 || g.hrir_length > 4096 || g.fourier_order < 0 ||
         g.fourier_order > 64 || g.light_samples < g.coefficients() || g.light_samples > 4096)
         throw Error({}, w, "an angular grid is out of range (views 4–1024, hrir_length 2–4096, fourier_order 0–64, "

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "models/core/error.h"
+#include "models/core/json_field.h"
 
 namespace coif {
 
@@ -84,18 +85,9 @@ nlohmann::json to_json(const SectorRanges& r) {
 
 namespace {
 
-template <class T>
-T field(const nlohmann::json& j, const char* key, const char* where) {
-    if (!j.contains(key)) throw Error({}, std::string(where) + "/" + key, "missing");
-    try {
-        return j.at(key).get<T>();
-    } catch (const nlohmann::json::exception& e) {
-        throw Error({}, std::string(where) + "/" + key, e.what());
-    }
-}
 
 void pair_field(const nlohmann::json& j, const char* key, double& lo, double& hi) {
-    const auto v = field<std::array<double, 2>>(j, key, "JSON /generator");
+    const auto v = json_field<std::array<double, 2>>(j, key, "JSON /generator");
     lo = v[0];
     hi = v[1];
 }
@@ -107,23 +99,23 @@ SectorRanges sector_ranges_from_json(const nlohmann::json& j) {
     pair_field(j, "depth_over_lambda", r.depth_min, r.depth_max);
     pair_field(j, "width_over_depth", r.aspect_min, r.aspect_max);
     pair_field(j, "coverage", r.coverage_min, r.coverage_max);
-    r.empty_probability = field<double>(j, "empty_probability", "JSON /generator");
-    r.clumping_max = field<double>(j, "clumping_max", "JSON /generator");
+    r.empty_probability = json_field<double>(j, "empty_probability", "JSON /generator");
+    r.clumping_max = json_field<double>(j, "clumping_max", "JSON /generator");
     pair_field(j, "clump_width", r.clump_width_min, r.clump_width_max);
-    r.radial_bias_max = field<double>(j, "radial_bias_max", "JSON /generator");
-    r.hole_probability = field<double>(j, "hole_probability", "JSON /generator");
+    r.radial_bias_max = json_field<double>(j, "radial_bias_max", "JSON /generator");
+    r.hole_probability = json_field<double>(j, "hole_probability", "JSON /generator");
     pair_field(j, "hole_radius", r.hole_radius_min, r.hole_radius_max);
     // Absent in files written before the band existed: those were built without it.
-    r.band_probability = j.contains("band_probability") ? field<double>(j, "band_probability", "JSON /generator") : 0.0;
+    r.band_probability = j.contains("band_probability") ? json_field<double>(j, "band_probability", "JSON /generator") : 0.0;
     if (j.contains("band_fraction")) pair_field(j, "band_fraction", r.band_fraction_min, r.band_fraction_max);
-    r.trace_cells_per_lambda = field<int>(j, "trace_cells_per_lambda", "JSON /generator");
-    const auto cells = field<std::array<int, 2>>(j, "trace_cells", "JSON /generator");
+    r.trace_cells_per_lambda = json_field<int>(j, "trace_cells_per_lambda", "JSON /generator");
+    const auto cells = json_field<std::array<int, 2>>(j, "trace_cells", "JSON /generator");
     r.trace_cells_min = cells[0];
     r.trace_cells_max = cells[1];
-    const auto fg = field<std::array<int, 2>>(j, "feature_grid", "JSON /generator");
+    const auto fg = json_field<std::array<int, 2>>(j, "feature_grid", "JSON /generator");
     r.feature_grid_s = fg[0];
     r.feature_grid_r = fg[1];
-    r.feature_grid_periodic = j.contains("feature_grid_periodic") ? field<bool>(j, "feature_grid_periodic", "JSON /generator") : true;
+    r.feature_grid_periodic = j.contains("feature_grid_periodic") ? json_field<bool>(j, "feature_grid_periodic", "JSON /generator") : true;
     const bool ok = r.depth_min > 0 && r.depth_max >= r.depth_min && r.aspect_min > 0 && r.aspect_max >= r.aspect_min &&
                     r.coverage_min > 0 && r.coverage_max >= r.coverage_min && r.trace_cells_per_lambda > 0 &&
                     r.band_probability >= 0 && r.band_probability <= 1 && r.band_fraction_min > 0 &&
