@@ -189,7 +189,9 @@ void add_bench_quality(CLI::App& root) {
             if (render_accepts(flag)) render_extra += args;
             else render_ignores.push_back(std::string(what) + " (" + flag + ")");
         };
-        pass(lighting, "lighting");
+        // `coif render --env` takes either a map or a lights file; the reference names the latter --lights.
+        const bool lights_via_env = lighting.rfind(" --lights ", 0) == 0 && !render_accepts("--lights") && render_accepts("--env");
+        pass(lights_via_env ? " --env" + lighting.substr(std::string(" --lights").size()) : lighting, "lighting");
         pass(hair, "hair parameters");
         if (lighting.empty() && !render_accepts("--env") && !render_accepts("--lights"))
             render_ignores.push_back("lighting (coif render has no --env/--lights: its own light)");
