@@ -33,6 +33,19 @@ Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags) {
     return Buffer(id);
 }
 
+Texture make_lut_texture(const shading::LutImage& img) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    Texture t(id);
+    glTextureStorage2D(id, 1, GL_RGBA32F, img.width, img.height);
+    glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.texels.data());
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
 VertexArray make_vertex_array() {
     GLuint id = 0;
     glCreateVertexArrays(1, &id);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "models/core/image.h"
+#include "shaders/lut.h"
 
 namespace coif::gl {
 
@@ -47,6 +48,9 @@ using Query = Handle<delete_query>;
 
 Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
 VertexArray make_vertex_array();
+// A lighting table (shaders/lut.h) as an RGBA32F texture with linear filtering and clamped edges,
+// the sampling its C++ twin reproduces.
+Texture make_lut_texture(const shading::LutImage& image);
 
 // The text of a GLSL file under shaders/, compiled into the binary; throws coif::Error if unknown.
 std::string shader_text(const std::string& path);

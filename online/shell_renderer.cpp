@@ -56,19 +56,6 @@ constexpr std::array<const char*, shading::kLutCount> kLutNames = {
     "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
     "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma"};
 
-Texture make_lut_texture(const shading::LutImage& img) {
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
-    Texture t(id);
-    glTextureStorage2D(id, 1, GL_RGBA32F, img.width, img.height);
-    glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.texels.data());
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
-
 glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
     const glm::mat3 r = glm::mat3_cast(glm::quat(s.rotation));
     glm::mat4 m(orientation * r * static_cast<float>(s.scale));

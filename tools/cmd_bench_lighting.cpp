@@ -25,17 +25,6 @@ struct BenchOptions {
     bool multiple = true, json = false, cpu_only = false, paper = false;
 };
 
-GLuint upload_lut(const LutImage& img) {
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, GL_RGBA32F, img.width, img.height);
-    glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.texels.data());
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return tex;
-}
 
 void add_bench_lighting(CLI::App& root) {
     CLI::App* bench = coif::cli::noun(root, "bench", "Benchmarks that print figures (JSON with --json, else a table)");
@@ -123,7 +112,7 @@ void add_bench_lighting(CLI::App& root) {
             program.use();
             int unit = 0;
             for (const auto& l : luts) {
-                textures.emplace_back(upload_lut(*l.image));
+                textures.push_back(coif::gl::make_lut_texture(*l.image));
                 glBindTextureUnit(GLuint(unit), textures.back().id());
                 glUniform1i(program.uniform(l.name), unit);
                 ++unit;
