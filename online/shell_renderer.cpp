@@ -15,7 +15,9 @@
 
 #include "models/core/error.h"
 #include "models/strands.h"
+#include "models/style_strands.h"
 #include "offline/sector_generator.h"
+#include "online/shadow_grid.h"
 
 namespace coif::gl {
 
@@ -23,6 +25,8 @@ namespace {
 
 constexpr int kLightingTexels = 7;  // 27 floats of C_k, S_k per lighting sample
 constexpr float kDeg = 0.017453292519943295f;
+constexpr int kShadowGridSize = 64;   // voxels along the hair's longest axis (docs/renderer.md: error and cost)
+constexpr int kShadowRays = 7;        // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
 
 // std430 mirrors of the GLSL structs.
 struct GpuInstance {
@@ -54,7 +58,7 @@ struct MeshRange {
 
 constexpr std::array<const char*, shading::kLutCount> kLutNames = {
     "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
-    "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma"};
+    "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma", "lut_ms_af"};
 
 glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
     const glm::mat3 r = glm::mat3_cast(glm::quat(s.rotation));
@@ -71,9 +75,14 @@ struct ShellRenderer::Impl {
     Program shade{{"shaders/gl/shell.vert", "shaders/gl/shell.frag"}};
     Program floor{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
     Program lighting{{"shaders/gl/shell_lighting.comp"}};
+    Program shadow{{"shaders/gl/shell_shadow.comp"}};
     VertexArray vao;
-    Buffer vertices, indices, cluster_ids, instances, sectors, samples, lights;
-    Texture atlas, lighting_tex;
+    Buffer vertices, indices, cluster_ids, instances, sectors, samples, lights, shadows;
+    Texture atlas, lighting_tex, density;
+    DensityGrid grid;        // values dropped after upload; dims, origin and voxel kept
+    float db_kappa = 0.6f;   // the database's κ (planar tracer)
+    bool shadows_valid = false;
+    float shadows_kappa = -1.0f;
     std::array<Texture, shading::kLutCount> luts;
     std::vector<std::vector<MeshRange>> meshes;  // [prototype][layer]
     std::vector<std::size_t> cluster_proto;      // cluster → prototype slot
@@ -82,7 +91,7 @@ struct ShellRenderer::Impl {
     int lighting_rows = 2;
     std::size_t sample_count = 0;
     int light_count = 0;
-    Query query_lighting, query_shells;
+    Query query_shadows, query_lighting, query_shells;
     // The dual-scattering tables of the last parameter set.
     std::vector<GpuSample> cpu_samples;
     bool have_ms = false;
@@ -272,7 +281,9 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
         for (int r = 0; r < m.lighting_rows; ++r) {
             const double t = static_cast<double>(r) / (m.lighting_rows - 1);
             const Frame f = shape.frame(t);
-            samples.push_back({model * glm::vec4(glm::vec3(shape.position(t)), 1.0f),
+            glm::vec4 position = model * glm::vec4(glm::vec3(shape.position(t)), 1.0f);
+            position.w = static_cast<float>(cl.placement.scale * std::max(shape.a(t), shape.b(t)));
+            samples.push_back({position,
                                glm::vec4(glm::normalize(rot * glm::vec3(f.tangent)), 0.0f),
                                glm::vec4(glm::normalize(rot * glm::vec3(f.normal)), 0.0f)});
         }
@@ -288,6 +299,31 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     m.sample_count = samples.size();
     m.cpu_samples = samples;
     stats_.lighting_samples = samples.size();
+
+    // ---- shadow grid (decision 5) ----------------------------------------------------------------------
+    {
+        StrandSampling sampling;
+        const Strands strands = sample_strands(style, sampling);
+        stats_.shadow_strands = strands.strand_count();
+        m.grid = voxelize_strands(strands, orientation, L.gaussian_width, kShadowGridSize);
+        m.db_kappa = static_cast<float>(db.params().tracer.kappa);
+        stats_.grid_x = m.grid.dims.x;
+        stats_.grid_y = m.grid.dims.y;
+        stats_.grid_z = m.grid.dims.z;
+        stats_.voxel = m.grid.voxel;
+        GLuint id = 0;
+        glCreateTextures(GL_TEXTURE_3D, 1, &id);
+        m.density = Texture(id);
+        glTextureStorage3D(id, 1, GL_R32F, m.grid.dims.x, m.grid.dims.y, m.grid.dims.z);
+        glTextureSubImage3D(id, 0, 0, 0, 0, m.grid.dims.x, m.grid.dims.y, m.grid.dims.z, GL_RED, GL_FLOAT, m.grid.values.data());
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+            glTextureParameteri(id, wrap, GL_CLAMP_TO_BORDER);
+        const float zero[4] = {0, 0, 0, 0};
+        glTextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, zero);
+        m.grid.values = {};
+    }
 
     // ---- upload ---------------------------------------------------------------------------------------
     m.vertices = make_buffer(vertices.data(), vertices.size() * sizeof(Vertex));
@@ -329,10 +365,11 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     const shading::LutSet set = tables.set();
     for (int i = 0; i < shading::kLutCount; ++i)
         if (set.images[i]) m.luts[i] = make_lut_texture(*set.images[i]);
-    GLuint q[2];
-    glCreateQueries(GL_TIME_ELAPSED, 2, q);
+    GLuint q[3];
+    glCreateQueries(GL_TIME_ELAPSED, 3, q);
     m.query_lighting = Query(q[0]);
     m.query_shells = Query(q[1]);
+    m.query_shadows = Query(q[2]);
     check_errors("ShellRenderer upload");
     stats_.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -347,6 +384,8 @@ void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
     }
     impl_->lights = make_buffer(gpu.data(), gpu.size() * sizeof(GpuLight));
     impl_->light_count = static_cast<int>(gpu.size());
+    impl_->shadows = make_buffer(nullptr, std::max<std::size_t>(1, gpu.size() * impl_->sample_count) * sizeof(glm::vec2));
+    impl_->shadows_valid = false;
 }
 
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floor_only) {
@@ -357,6 +396,36 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     glViewport(0, 0, camera.width, camera.height);
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    // ---- shadow pass (only when the lights or κ changed) ---------------------------------------------
+    const float kappa = s.kappa_between >= 0.0f ? s.kappa_between : m.db_kappa;
+    timings_.shadows_ms = 0;
+    if (!floor_only && s.shadows && m.light_count > 0 && (!m.shadows_valid || m.shadows_kappa != kappa)) {
+        glBeginQuery(GL_TIME_ELAPSED, m.query_shadows.id());
+        m.shadow.use();
+        glBindTextureUnit(0, m.density.id());
+        glUniform1i(m.shadow.uniform("u_density"), 0);
+        const glm::vec3 extent = m.grid.extent();
+        glUniform3fv(m.shadow.uniform("u_grid_min"), 1, &m.grid.origin.x);
+        glUniform3fv(m.shadow.uniform("u_grid_extent"), 1, &extent.x);
+        glUniform1f(m.shadow.uniform("u_step"), m.grid.voxel);
+        glUniform1f(m.shadow.uniform("u_kappa"), kappa);
+        glUniform1i(m.shadow.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
+        glUniform1i(m.shadow.uniform("u_light_count"), m.light_count);
+        glUniform1i(m.shadow.uniform("u_rays"), kShadowRays);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.shadows.id());
+        const std::size_t pairs = m.sample_count * static_cast<std::size_t>(m.light_count);
+        glDispatchCompute(static_cast<GLuint>((pairs + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glEndQuery(GL_TIME_ELAPSED);
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(m.query_shadows.id(), GL_QUERY_RESULT, &ns);
+        timings_.shadows_ms = static_cast<double>(ns) * 1e-6;
+        m.shadows_valid = true;
+        m.shadows_kappa = kappa;
+    }
 
     // ---- lighting pass ---------------------------------------------------------------------------
     if (!floor_only) {
@@ -412,9 +481,11 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         i1("u_config.paper_tt", s.config.paper_tt);
         i1("u_lobes", s.lobes);
         i1("u_multiple", s.multiple ? 1 : 0);
-        f("u_sigma_f2", s.sigma_f2);
+        i1("u_shadows", s.shadows && m.light_count > 0 ? 1 : 0);
+        f("u_d_f", s.d_f);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.shadows.id());
         glBindImageTexture(0, m.lighting_tex.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glDispatchCompute(static_cast<GLuint>((m.sample_count + 31) / 32), 1, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -513,6 +584,13 @@ std::vector<float> ShellRenderer::read_lighting() const {
 
 int ShellRenderer::lighting_rows() const { return impl_->lighting_rows; }
 
+std::vector<glm::vec2> ShellRenderer::read_shadows() const {
+    const Impl& m = *impl_;
+    std::vector<glm::vec2> out(m.sample_count * static_cast<std::size_t>(m.light_count));
+    if (!out.empty()) glGetNamedBufferSubData(m.shadows.id(), 0, static_cast<GLsizeiptr>(out.size() * sizeof(glm::vec2)), out.data());
+    return out;
+}
+
 std::vector<glm::vec3> ShellRenderer::lighting_sample(std::size_t index) const {
     const GpuSample& s = impl_->cpu_samples.at(index);
     return {glm::vec3(s.position), glm::vec3(s.tangent), glm::vec3(s.normal)};
@@ -541,7 +619,8 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (!j.is_object()) throw Error(path, "JSON /", "expected an object of parameters");
     static const std::vector<std::string> known = {
         "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
-        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sigma_f2", "sort_clusters"};
+        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sort_clusters",
+        "shadows", "kappa_between", "d_f"};
     for (const auto& [key, value] : j.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
             throw Error(path, "JSON /" + key, "unknown parameter (known: eta, sigma_a, alpha_R_deg, beta_R_deg, …)");
@@ -592,9 +671,13 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
             throw Error(path, "JSON /neighbours", "must be an integer 1.." + std::to_string(kMaxShellNeighbours));
         s.neighbours = static_cast<int>(*v);
     }
-    if (auto v = number("sigma_f2")) {
-        if (*v < 0 || *v > 10) throw Error(path, "JSON /sigma_f2", "must be in [0, 10] rad²");
-        s.sigma_f2 = *v;
+    if (auto v = number("kappa_between")) {
+        if (*v < 0 || *v > 100) throw Error(path, "JSON /kappa_between", "must be in [0, 100]");
+        s.kappa_between = *v;
+    }
+    if (auto v = number("d_f")) {
+        if (*v < 0 || *v > 1) throw Error(path, "JSON /d_f", "must be in [0, 1]");
+        s.d_f = *v;
     }
     if (auto v = number("debug")) {
         if (*v < 0 || *v > 3 || *v != std::floor(*v)) throw Error(path, "JSON /debug", "must be 0, 1, 2 or 3");
@@ -603,6 +686,10 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (j.contains("sort_clusters")) {
         if (!j["sort_clusters"].is_boolean()) throw Error(path, "JSON /sort_clusters", "expected true or false");
         s.sort_clusters = j["sort_clusters"].get<bool>();
+    }
+    if (j.contains("shadows")) {
+        if (!j["shadows"].is_boolean()) throw Error(path, "JSON /shadows", "expected true or false");
+        s.shadows = j["shadows"].get<bool>();
     }
     if (j.contains("multiple")) {
         if (!j["multiple"].is_boolean()) throw Error(path, "JSON /multiple", "expected true or false");

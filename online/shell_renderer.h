@@ -20,8 +20,13 @@
 // outer → inner, then front faces inner → outer (the transparent core shows what lies behind).
 // Nothing per frame runs on the CPU beyond the sort and the draw calls.
 //
-// Not yet: shadows between clusters (T̃ = T_f = 1, σ_f² = 0 for every light), per-pixel order
-// within interpenetrating clusters, the absorption texture, AOVs.
+// Shadows between clusters (DESIGN.md decision 5): the style's strands (models/style_strands.h)
+// voxelized once into an optical-density grid (online/shadow_grid.h), a 3D texture; a compute pass
+// (shaders/gl/shell_shadow.comp) marches it from every lighting sample towards every light for T̃ and
+// the fibres met n, rerun only when the lights or κ change; the lighting pass reads them
+// (shaders/lighting/srbf_shadowed.glsl).
+//
+// Not yet: per-pixel order within interpenetrating clusters, the absorption texture, AOVs.
 //
 // Conventions: world is y-up centimetres after `orientation` (the style's hang axis turned to −y,
 // as the strand preview does); light directions point towards the light; the camera is coif::Camera.
@@ -47,9 +52,10 @@ struct ShellSettings {
     shading::HairParams hair = shading::default_hair_params();
     shading::LightingConfig config = shading::default_config(4);
     int lobes = 7;                  // bit 0 R, bit 1 TT, bit 2 TRT
-    bool multiple = false;          // dual-scattering multiple scattering: off until T_f, σ_f² come from
-                                    // shadows between clusters (with T_f = 1 it is ~30× the single scattering)
-    float sigma_f2 = 0.0f;          // σ̄_f² (rad²) of every light, until shadows between clusters supply it
+    bool multiple = true;           // dual-scattering multiple scattering (shaders/lighting/srbf_shadowed.glsl)
+    bool shadows = true;            // shadows between clusters (T̃, n per lighting sample and light)
+    float kappa_between = -1.0f;    // κ of the shadow pass (opacity per unit density per λ of path); < 0: the database's
+    float d_f = 0.7f;               // Zinke's forward-scattering density factor d_f
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
@@ -61,7 +67,7 @@ struct ShellSettings {
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
-//    "debug": 0..3 (ShellSettings::debug), "sigma_f2", "sort_clusters"}
+//    "debug": 0..3 (ShellSettings::debug), "sort_clusters", "shadows": true, "kappa_between", "d_f"}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
@@ -75,10 +81,13 @@ struct ShellStats {
     int atlas_width = 0, atlas_height = 0;
     double prepare_seconds = 0;  // densities, features, look-up and upload
     float re_norm = 1;           // Σ mean re a_0 / Σ mean α over the database (see docs/renderer.md)
+    std::size_t shadow_strands = 0;  // strands voxelized for the shadow grid
+    int grid_x = 0, grid_y = 0, grid_z = 0;
+    float voxel = 0;                 // shadow grid voxel edge, world units
 };
 
 struct ShellTimings {  // GPU time of the last draw, milliseconds (GL_TIME_ELAPSED queries)
-    double lighting_ms = 0, shells_ms = 0;
+    double shadows_ms = 0, lighting_ms = 0, shells_ms = 0;  // shadows_ms: 0 when the pass was cached
 };
 
 class ShellRenderer {
@@ -102,6 +111,9 @@ public:
     // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator.
     std::vector<float> read_lighting() const;
     int lighting_rows() const;
+    // The shadow pass's output of the last draw that ran it: (T̃, n) per lighting sample (cluster-major,
+    // as lighting_sample) and light.
+    std::vector<glm::vec2> read_shadows() const;
     // The lighting samples (world position, tangent, frame normal r0) in cluster-major order.
     std::vector<glm::vec3> lighting_sample(std::size_t index) const;
     const ShellTimings& timings() const { return timings_; }

@@ -156,9 +156,13 @@ glm::vec3 LightingEvaluator::ms_local(float theta_o, float phi_o, float theta_j,
 }
 
 PointLighting LightingEvaluator::shade(const FibreFrame& frame, glm::vec3 view, std::span<const SrbfLight> lights,
-                                       std::span<const LightShadow> shadows, bool multiple) const {
+                                       std::span<const LightShadow> shadows, bool multiple, float d_f) const {
     if (!shadows.empty() && shadows.size() != lights.size())
         throw Error::parameter("LightingEvaluator::shade", "shadows must be empty or have one entry per light");
+    if (!(d_f >= 0.0f && d_f <= 1.0f)) throw Error::parameter("d_f", "must be in [0, 1]");
+    for (const LightShadow& s : shadows)
+        if (!(s.direct >= 0.0f && s.direct <= 1.0f) || !(s.fibres >= 0.0f && std::isfinite(s.fibres)))
+            throw Error::parameter("LightingEvaluator::shade", "a shadow needs direct in [0, 1] and finite fibres >= 0");
     LutBinding b(lut_set_);
     float theta_o, phi_o;
     glsl::hair_angles(glm::normalize(view), frame.u, frame.v, frame.w, theta_o, phi_o);
@@ -168,12 +172,12 @@ PointLighting LightingEvaluator::shade(const FibreFrame& frame, glm::vec3 view, 
         const LightShadow shadow = shadows.empty() ? LightShadow{} : shadows[j];
         float theta_j, phi_j;
         glsl::hair_angles(glm::normalize(light.direction), frame.u, frame.v, frame.w, theta_j, phi_j);
-        out.single += light.radiance * shadow.T_tilde *
+        out.single += light.radiance * shadow.direct *
                       glsl::srbf_single(params_, config_, f0123_, f45_, theta_o, phi_o, theta_j, phi_j, light.lambda);
         if (multiple)
-            out.multiple += light.radiance * shadow.T_f *
-                            glsl::srbf_multiple(params_, config_, f0123_, f45_, theta_o, phi_o, theta_j, phi_j,
-                                                light.lambda, shadow.sigma_f2);
+            out.multiple += light.radiance * glsl::srbf_shadowed_multiple(params_, config_, f0123_, f45_, d_f, theta_o,
+                                                                          phi_o, theta_j, phi_j, light.lambda,
+                                                                          shadow.direct, shadow.fibres);
     }
     return out;
 }

@@ -6,8 +6,9 @@
 // Conventions (DESIGN.md): hair-local frame u = tangent root→tip, v = the reference normal (φ = 0,
 // the axis `a` scales for eccentric fibres), w = u × v; ω = [sinθ, cosθ cosφ, cosθ sinφ]; angles in
 // radians; Gaussian widths are 000's bandwidths λ (variance λ²/2); σa per unit fibre radius (RGB).
-// Radiance of one shading point (000 eq. 2-4), with D the fibre diameter applied by the caller:
-//   L_o = D Σ_j L_j [ T̃_j 𝓜_j  +  T_f,j (𝓜^G_j + d_b 𝓜^L_j) ]
+// Radiance of one shading point (000 eq. 2-4 in Zinke's split, shaders/lighting/srbf_shadowed.glsl),
+// with D the fibre diameter applied by the caller:
+//   L_o = D Σ_j L_j [ T̃_j (𝓜_j + d_b 𝓜^L_j(λ_j)) + d_f max(T_f,j − T̃_j, 0) (𝓜^G_j + d_b 𝓜^L_j)(λ_f,j) ]
 #include <span>
 #include <string>
 
@@ -15,7 +16,7 @@
 #include "shaders/lighting_tables.h"
 
 namespace coif::glsl {
-#include "shaders/lighting/srbf_multiple.glsl"
+#include "shaders/lighting/srbf_shadowed.glsl"
 }  // namespace coif::glsl
 
 namespace coif::shading {
@@ -57,11 +58,11 @@ struct SrbfLight {
     glm::vec3 radiance{1.0f};                // L_j
 };
 
-// Per-light visibility terms from the renderer's shadow pass (defaults: unshadowed).
+// Per-light visibility from the renderer's shadow pass (defaults: unshadowed). T_f and σ̄_f² follow
+// from `fibres` (shaders/lighting/srbf_shadowed.glsl).
 struct LightShadow {
-    glm::vec3 T_tilde{1.0f};  // effective transmittance of single scattering (000 eq. 2)
-    glm::vec3 T_f{1.0f};      // forward-scattering transmittance (000 eq. 3)
-    float sigma_f2 = 0.0f;    // forward-scattering spread variance σ̄_f² (rad²)
+    float direct = 1.0f;  // T̃: the light's unoccluded fraction (000 eq. 2's effective transmittance)
+    float fibres = 0.0f;  // n: fibres met on the way to the light
 };
 
 struct FibreFrame {
@@ -72,7 +73,7 @@ struct FibreFrame {
 
 struct PointLighting {
     glm::vec3 single{0.0f};    // Σ_j L_j T̃_j 𝓜_j
-    glm::vec3 multiple{0.0f};  // Σ_j L_j T_f,j (𝓜^G_j + d_b 𝓜^L_j)
+    glm::vec3 multiple{0.0f};  // Σ_j L_j [T̃_j d_b 𝓜^L_j + d_f (T_f,j − T̃_j)⁺ (𝓜^G_j + d_b 𝓜^L_j)]
     glm::vec3 total() const { return single + multiple; }
 };
 
@@ -89,7 +90,8 @@ public:
     // All lights, all lobes, single + multiple scattering, at one shading point. `view` points from
     // the point towards the eye. `shadows` is empty (all unshadowed) or one entry per light.
     PointLighting shade(const FibreFrame& frame, glm::vec3 view, std::span<const SrbfLight> lights,
-                        std::span<const LightShadow> shadows = {}, bool multiple = true) const;
+                        std::span<const LightShadow> shadows = {}, bool multiple = true,
+                        float d_f = glsl::MS_DEFAULT_D_F) const;
 
     // One light, in hair-frame angles: 𝓜 = Σ_t 𝓜_t (000 eq. 11), one lobe, and 𝓜^G + d_b 𝓜^L.
     glm::vec3 single(float theta_o, float phi_o, float theta_j, float phi_j, float lambda_j) const;

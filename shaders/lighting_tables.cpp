@@ -172,6 +172,7 @@ LutSet MultipleScatteringTables::set() const {
     s.images[int(Lut::lut_ms_ab)] = &ab;
     s.images[int(Lut::lut_ms_sat_delta)] = &sat_delta;
     s.images[int(Lut::lut_ms_sat_sigma)] = &sat_sigma;
+    s.images[int(Lut::lut_ms_af)] = &af;
     return s;
 }
 
@@ -227,12 +228,17 @@ MultipleScatteringTables build_ms_tables(const glsl::HairParams& params, const g
     t.ab = LutImage(LUT_N_MS, 1);
     t.sat_delta = LutImage(LUT_N_MS, 1);
     t.sat_sigma = LutImage(LUT_N_MS, 1);
+    t.af = LutImage(LUT_N_MS, 1);
     std::vector<glm::dvec3> delta(LUT_N_MS), sigma(LUT_N_MS);
     for (int i = 0; i < LUT_N_MS; ++i) {
         const float x = lut_point_lin(i, -COIF_HALF_PI, COIF_HALF_PI, LUT_N_MS);
         vec3 A_b, Delta_b, sigma_b;
         zinke_terms(params, config, f0123, f45, x, A_b, Delta_b, sigma_b);
         t.ab.at(i, 0) = glm::vec4(A_b, 0.0f);
+        vec3 a_f;
+        float beta_f2 = 0.0f;
+        zinke_forward(params, config, f0123, f45, x, a_f, beta_f2);
+        t.af.at(i, 0) = glm::vec4(a_f, beta_f2);
         delta[i] = glm::dvec3(Delta_b);
         sigma[i] = glm::dvec3(sigma_b);
     }

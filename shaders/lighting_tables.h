@@ -26,7 +26,7 @@ LightingTables build_lighting_tables();
 const LightingTables& global_lighting_tables();
 
 struct MultipleScatteringTables {
-    LutImage ab, sat_delta, sat_sigma;
+    LutImage ab, sat_delta, sat_sigma, af;
     double build_seconds = 0.0;
     LutSet set() const;
 };

@@ -26,6 +26,7 @@ enum class Lut : int {
     lut_ms_ab,         // Zinke's Ā_b(θd) for one parameter set (000 eq. 29)
     lut_ms_sat_delta,  // summed-area table of Δ̄_b(θd) (000 eq. 31)
     lut_ms_sat_sigma,  // summed-area table of σ̄_b(θd)
+    lut_ms_af,         // forward scattering through one fibre: ā_f(θd) RGB, β̄_f²(θd) in w (shadow paths)
     count
 };
 inline constexpr int kLutCount = static_cast<int>(Lut::count);

@@ -1,15 +1,15 @@
 // The lighting pass of the shell renderer (DESIGN.md decisions 1 and 3): per lighting sample along
 // each cluster's axis (position, tangent T, frame normal r0) and per SRBF light j, the weight
-// w_j = L_j (𝓜_j + 𝓜^G_j + d_b 𝓜^L_j) of the SRBF Marschner lighting (shaders/lighting/, 000
-// eq. 2–4 with T̃ = T_f = 1 and σ_f² = 0: no shadows between clusters yet), and the light's in-plane
+// w_j = L_j (T̃_j 𝓜_j + multiple scattering) of the SRBF Marschner lighting (shaders/lighting/
+// srbf_shadowed.glsl: 000 eq. 2–5 in Zinke's split) with T̃_j and the fibres met n_j from the shadow
+// pass (shell_shadow.comp; T̃ = 1, n = 0 when shadows between clusters are off), and the light's in-plane
 // azimuth ψ_j in the fixed frame (r0, T × r0) (shaders/gl/sector_frame.glsl). Stored:
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
 // 27 floats in 7 RGBA32F texels per sample: texel (row, cluster · 7 + m).
 #include "shaders/lighting/luts_gl.glsl"
-#include "shaders/lighting/srbf_single.glsl"
-#include "shaders/lighting/srbf_multiple.glsl"
+#include "shaders/lighting/srbf_shadowed.glsl"
 #include "shaders/gl/sector_frame.glsl"
 
 layout(local_size_x = 32) in;
@@ -25,6 +25,7 @@ struct GpuLight {
     vec4 radiance;          // rgb = L_j
 };
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
+layout(std430, binding = 4) readonly buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
 layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
 
 uniform int u_sample_count;
@@ -35,7 +36,8 @@ uniform HairParams u_hair;
 uniform LightingConfig u_config;
 uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT
 uniform int u_multiple;  // dual scattering on/off
-uniform float u_sigma_f2;  // σ̄_f² of every light (rad²) until shadows between clusters supply it
+uniform int u_shadows;   // shadows between clusters on/off
+uniform float u_d_f;     // Zinke's forward density factor d_f
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
@@ -60,11 +62,11 @@ void main() {
         float theta_j;
         float phi_j;
         hair_angles(l, T, r0, w, theta_j, phi_j);
-        vec3 m = vec3(0.0);
-        if ((u_lobes & 1) != 0) m += srbf_single_lobe(LOBE_R, u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
-        if ((u_lobes & 2) != 0) m += srbf_single_lobe(LOBE_TT, u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
-        if ((u_lobes & 4) != 0) m += srbf_single_lobe(LOBE_TRT, u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
-        if (u_multiple != 0) m += srbf_multiple(u_hair, u_config, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, u_sigma_f2);
+        vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
+        vec3 m = sh.x * srbf_single_lobes(u_hair, u_config, f0123, f45, u_lobes, theta_o, phi_o, theta_j, phi_j, lambda_j);
+        if (u_multiple != 0)
+            m += srbf_shadowed_multiple(u_hair, u_config, f0123, f45, u_d_f, theta_o, phi_o, theta_j, phi_j, lambda_j,
+                                        sh.x, sh.y);
         vec3 wj = lights[j].radiance.rgb * m;
         float psi = sector_azimuth(l, T, r0);
         float proj = length(l - dot(l, T) * T);

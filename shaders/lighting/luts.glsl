@@ -95,5 +95,9 @@ COIF_FN vec3 fetch_ms_sat_sigma(float theta_d) {
     vec4 t = COIF_LUT(lut_ms_sat_sigma, vec2(ms_coord(theta_d), 0.5));
     return vec3(t.x, t.y, t.z);
 }
+// Forward scattering through one fibre: ā_f(θd) (RGB) and β̄_f² (rad²), see zinke_forward.
+COIF_FN vec4 fetch_ms_forward(float theta_d) {
+    return COIF_LUT(lut_ms_af, vec2(ms_coord(theta_d), 0.5));
+}
 
 #endif

@@ -17,5 +17,6 @@ uniform sampler2D lut_fresnel_fit;
 uniform sampler2D lut_ms_ab;
 uniform sampler2D lut_ms_sat_delta;
 uniform sampler2D lut_ms_sat_sigma;
+uniform sampler2D lut_ms_af;
 
 #endif

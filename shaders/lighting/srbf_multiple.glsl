@@ -303,17 +303,18 @@ COIF_FN void zinke_backscatter(vec3 af, vec3 ab, vec3 alpha_f, vec3 alpha_b, vec
     sigma_b = (1.0 + d_b * af2) * num / den;
 }
 
-// The three 1D functions of θd that local multiple scattering tabulates (000 §5), from the fitted N_t.
-COIF_FN void zinke_terms(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) A_b,
-                         OUT(vec3) Delta_b, OUT(vec3) sigma_b) {
-    vec3 af = vec3(0.0);
-    vec3 ab = vec3(0.0);
-    vec3 alpha_f = vec3(0.0);
-    vec3 alpha_b = vec3(0.0);
-    vec3 beta_f2 = vec3(0.0);
-    vec3 beta_b2 = vec3(0.0);
-    // At grazing θd every ā is ~0 (and may come out -1e-20): the weights get a floor so that the
-    // weighted means stay defined (they fall back to the plain mean of the lobes).
+// Σ over the lobes of the forward/backward attenuations ā_f, ā_b and of their shift- and
+// variance-weighted sums (the moments that zinke_terms and zinke_forward normalise). At grazing θd
+// every ā is ~0 (and may come out -1e-20): the weights get a floor so that the weighted means stay
+// defined (they fall back to the plain mean of the lobes).
+COIF_FN void zinke_lobe_sums(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) af,
+                             OUT(vec3) ab, OUT(vec3) alpha_f, OUT(vec3) alpha_b, OUT(vec3) beta_f2, OUT(vec3) beta_b2) {
+    af = vec3(0.0);
+    ab = vec3(0.0);
+    alpha_f = vec3(0.0);
+    alpha_b = vec3(0.0);
+    beta_f2 = vec3(0.0);
+    beta_b2 = vec3(0.0);
     for (int lobe = 0; lobe < 3; ++lobe) {
         vec3 f;
         vec3 bk;
@@ -329,10 +330,38 @@ COIF_FN void zinke_terms(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45
         beta_f2 += f * var;
         beta_b2 += bk * var;
     }
+}
+
+// The three 1D functions of θd that local multiple scattering tabulates (000 §5), from the fitted N_t.
+COIF_FN void zinke_terms(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) A_b,
+                         OUT(vec3) Delta_b, OUT(vec3) sigma_b) {
+    vec3 af;
+    vec3 ab;
+    vec3 alpha_f;
+    vec3 alpha_b;
+    vec3 beta_f2;
+    vec3 beta_b2;
+    zinke_lobe_sums(hp, cfg, f0123, f45, x, af, ab, alpha_f, alpha_b, beta_f2, beta_b2);
     vec3 inv_f = 1.0 / af;
     vec3 inv_b = 1.0 / ab;
     zinke_backscatter(af, ab, alpha_f * inv_f, alpha_b * inv_b, beta_f2 * inv_f, beta_b2 * inv_b, hp.d_b, A_b,
                       Delta_b, sigma_b);
+}
+
+// What one fibre does to light passing forward through it (Zinke et al. 2008 §4, the shadow path of
+// 000 eq. 3 and 5): the forward attenuation ā_f(θd) = Σ_t ā_{f,t} and the ā_f-weighted mean
+// longitudinal variance β̄_f² (rad², averaged over the colour channels). n fibres on the path give
+// T_f = d_f ā_f^n and σ̄_f² = n β̄_f² (the renderer's shadow pass supplies n).
+COIF_FN void zinke_forward(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) a_f,
+                           OUT(float) beta_f2) {
+    vec3 ab;
+    vec3 alpha_f;
+    vec3 alpha_b;
+    vec3 bf2;
+    vec3 beta_b2;
+    zinke_lobe_sums(hp, cfg, f0123, f45, x, a_f, ab, alpha_f, alpha_b, bf2, beta_b2);
+    vec3 v = bf2 / a_f;
+    beta_f2 = (v.x + v.y + v.z) / 3.0;
 }
 
 #endif

@@ -235,12 +235,42 @@ TEST(Evaluator, SumsLightsAndAppliesShadowTerms) {
         EXPECT_NEAR(sum.single[c], pa.single[c] + pb.single[c], 1e-6f * (1.0f + sum.single[c]));
         EXPECT_NEAR(sum.multiple[c], pa.multiple[c] + pb.multiple[c], 1e-6f * (1.0f + sum.multiple[c]));
     }
-    const LightShadow half{glm::vec3(0.5f), glm::vec3(0.25f), 0.0f};
+    // Unshadowed: single scattering plus d_b times the local multiple scattering (a lone fibre; no
+    // global term, which would count the unscattered light twice).
+    float theta_o, phi_o, theta_j, phi_j;
+    coif::glsl::hair_angles(glm::normalize(view), frame.u, frame.v, frame.w, theta_o, phi_o);
+    coif::glsl::hair_angles(glm::normalize(a.direction), frame.u, frame.v, frame.w, theta_j, phi_j);
+    const glm::vec3 local = eval.ms_local(theta_o, phi_o, theta_j, phi_j, a.lambda, 0.0f);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(pa.multiple[c], a.radiance[c] * eval.params().d_b * local[c], 1e-6f * (1.0f + pa.multiple[c]));
+    // Half the lobe blocked, nothing scattered on the way: both parts halve.
+    const LightShadow half{0.5f, 0.0f};
     const PointLighting shadowed = eval.shade(frame, view, std::span(&a, 1), std::span(&half, 1));
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(shadowed.single[c], 0.5f * pa.single[c], 1e-6f);
-        EXPECT_NEAR(shadowed.multiple[c], 0.25f * pa.multiple[c], 1e-6f);
+        EXPECT_NEAR(shadowed.multiple[c], 0.5f * pa.multiple[c], 1e-6f);
     }
+    // Behind n = 3 fibres: T̃ = e^-3, T_f = ā_f^3, σ̄_f² = 3 β̄_f² from the forward table.
+    const float n = 3.0f;
+    const LightShadow behind{std::exp(-n), n};
+    const PointLighting deep = eval.shade(frame, view, std::span(&a, 1), std::span(&behind, 1), true, 0.7f);
+    const glm::vec4 fw = [&] {
+        const LutBinding bind = eval.bind();
+        return coif::glsl::fetch_ms_forward(theta_j);
+    }();
+    EXPECT_GT(fw.x, 0.05f) << "a fibre passes some light forward";
+    EXPECT_LT(fw.x, 1.0f) << "and absorbs or reflects some";
+    const glm::vec3 spread = eval.multiple(theta_o, phi_o, theta_j, phi_j, a.lambda, n * fw.w);
+    for (int c = 0; c < 3; ++c) {
+        const float T_f = std::pow(fw[c], n);
+        const float want = a.radiance[c] * (behind.direct * eval.params().d_b * local[c] +
+                                            0.7f * std::max(T_f - behind.direct, 0.0f) * spread[c]);
+        EXPECT_NEAR(deep.multiple[c], want, 1e-5f * (1.0f + want)) << c;
+        EXPECT_NEAR(deep.single[c], behind.direct * pa.single[c], 1e-6f);
+    }
+    EXPECT_THROW(eval.shade(frame, view, std::span(&a, 1), std::span(&half, 1), true, 1.5f), coif::Error);
+    const LightShadow bad{0.5f, std::nanf("")};
+    EXPECT_THROW(eval.shade(frame, view, std::span(&a, 1), std::span(&bad, 1)), coif::Error);
     EXPECT_GT(sum.single.x, 0.0f);
     EXPECT_GT(sum.multiple.x, 0.0f);
 }

@@ -1,0 +1,75 @@
+#include "online/shadow_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "models/core/error.h"
+
+namespace coif {
+
+float DensityGrid::sample(glm::vec3 p) const {
+    const glm::vec3 g = (p - origin) / voxel - 0.5f;
+    const glm::ivec3 i0 = glm::ivec3(glm::floor(g));
+    const glm::vec3 f = g - glm::vec3(i0);
+    float sum = 0.0f;
+    for (int c = 0; c < 8; ++c) {
+        const glm::ivec3 i = i0 + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, dims))) continue;
+        const float w = ((c & 1) ? f.x : 1 - f.x) * ((c & 2) ? f.y : 1 - f.y) * ((c & 4) ? f.z : 1 - f.z);
+        sum += w * at(i.x, i.y, i.z);
+    }
+    return sum;
+}
+
+float DensityGrid::integrate(glm::vec3 p, glm::vec3 d, float length, float step) const {
+    const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
+    const float h = length / n;
+    double sum = 0;
+    for (int k = 0; k < n; ++k) sum += sample(p + d * ((k + 0.5f) * h));
+    return static_cast<float>(sum * h);
+}
+
+DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, double gaussian_width, int max_dim) {
+    if (strands.points.empty()) throw Error::parameter("shadow grid", "the style gives no strands to voxelize");
+    if (!(gaussian_width > 0) || !std::isfinite(gaussian_width))
+        throw Error::parameter("shadow grid", "the strand Gaussian width must be finite and > 0");
+    if (max_dim < 8 || max_dim > 512) throw Error::parameter("shadow grid", "voxels along the longest axis must be 8..512");
+    std::vector<glm::vec3> p(strands.points.size());
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        p[i] = orientation * strands.points[i];
+        lo = glm::min(lo, p[i]);
+        hi = glm::max(hi, p[i]);
+    }
+    DensityGrid g;
+    const glm::vec3 size = glm::max(hi - lo, glm::vec3(1e-6f));
+    const float longest = std::max({size.x, size.y, size.z});
+    g.voxel = longest / static_cast<float>(max_dim - 4);
+    g.dims = glm::min(glm::ivec3(glm::ceil(size / g.voxel)) + 4, glm::ivec3(max_dim));
+    g.origin = 0.5f * (lo + hi) - 0.5f * g.extent();
+    g.values.assign(static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z, 0.0f);
+    const double scale = std::numbers::pi * gaussian_width / (static_cast<double>(g.voxel) * g.voxel * g.voxel);
+    const auto splat = [&](glm::vec3 q, float length) {
+        const glm::vec3 f0 = (q - g.origin) / g.voxel - 0.5f;
+        const glm::ivec3 i0 = glm::ivec3(glm::floor(f0));
+        const glm::vec3 f = f0 - glm::vec3(i0);
+        for (int c = 0; c < 8; ++c) {
+            const glm::ivec3 i = i0 + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, g.dims))) continue;
+            const float w = ((c & 1) ? f.x : 1 - f.x) * ((c & 2) ? f.y : 1 - f.y) * ((c & 4) ? f.z : 1 - f.z);
+            g.values[(static_cast<std::size_t>(i.z) * g.dims.y + i.y) * g.dims.x + i.x] += static_cast<float>(w * length * scale);
+        }
+    };
+    for (std::size_t s = 0; s + 1 < strands.offsets.size(); ++s)
+        for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
+            const glm::vec3 a = p[k], b = p[k + 1];
+            const float len = glm::distance(a, b);
+            const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5f * g.voxel))));
+            for (int q = 0; q < n; ++q) splat(a + (b - a) * ((q + 0.5f) / n), len / n);
+        }
+    return g;
+}
+
+}  // namespace coif

@@ -1,0 +1,51 @@
+// One SRBF light at a fibre point that sees the light through other fibres: single scattering with
+// the effective transmittance T̃ (000 eq. 2) and dual-scattering multiple scattering with the forward
+// transmittance T_f and spread σ̄_f² of the shadow path (000 eq. 3-5), combined as Zinke et al. 2008
+// (Algorithm 1) combine them, so that the unscattered light is not counted twice:
+//
+//   direct  = T̃ (𝓜 + d_b 𝓜^L(λ_j))                    light that reached the point unscattered
+//   scatter = d_f max(T_f − T̃, 0) (𝓜^G + d_b 𝓜^L)(λ_f)  light forward-scattered on the way
+//   T_f = ā_f(θ_j)^n,  σ̄_f² = n β̄_f²(θ_j)             (zinke_forward, tabulated in lut_ms_af)
+//
+// n is the number of fibres on the shadow path (the renderer's shadow pass: optical depth, one unit
+// per fibre met), T̃ the unoccluded fraction of the light's lobe (exp(−n) for one ray; the pass
+// averages over the lobe). ā_f is read at θd = θ_j: the fibres on the path are taken parallel to
+// this one (Zinke's assumption). d_f is Zinke's density factor (≈ 0.7). With n = 0 and T̃ = 1 this is
+// single scattering plus d_b times the local (backward) multiple scattering: a lone fibre.
+//
+// 000 writes L = Σ_j L_j [T̃ 𝓜 + T_f (𝓜^G + d_b 𝓜^L)], which at n = 0 adds single scattering twice
+// (𝓜^G → 𝓜 as σ_f → 0); we keep Zinke's split. GLSL compiled also as C++.
+#ifndef COIF_SHADERS_LIGHTING_SRBF_SHADOWED_GLSL
+#define COIF_SHADERS_LIGHTING_SRBF_SHADOWED_GLSL
+
+#include "shaders/lighting/srbf_multiple.glsl"
+
+const float MS_DEFAULT_D_F = 0.7;  // Zinke et al. 2008: density factor of forward scattering
+
+// Σ of the enabled single-scattering lobes (bit 0 R, bit 1 TT, bit 2 TRT) of one light.
+COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, int lobes, float theta_o,
+                               float phi_o, float theta_j, float phi_j, float lambda_j) {
+    vec3 m = vec3(0.0);
+    if ((lobes & 1) != 0) m += srbf_single_lobe(LOBE_R, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if ((lobes & 2) != 0) m += srbf_single_lobe(LOBE_TT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if ((lobes & 4) != 0) m += srbf_single_lobe(LOBE_TRT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    return m;
+}
+
+// The multiple-scattering part (direct local term plus forward-scattered light) of one light, per
+// unit radiance; `direct` = T̃, `fibres` = n (see the header).
+COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float d_f, float theta_o,
+                                    float phi_o, float theta_j, float phi_j, float lambda_j, float direct,
+                                    float fibres) {
+    vec3 ms = direct * hp.d_b * srbf_ms_local(cfg, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if (fibres > 0.0) {
+        vec4 fw = fetch_ms_forward(theta_j);
+        vec3 T_f = exp(log(max(vec3(fw.x, fw.y, fw.z), vec3(1e-6))) * fibres);
+        vec3 share = d_f * max(T_f - vec3(direct), vec3(0.0));
+        if (max(max(share.x, share.y), share.z) > 0.0)
+            ms += share * srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, fibres * fw.w);
+    }
+    return ms;
+}
+
+#endif
