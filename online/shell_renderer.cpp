@@ -83,6 +83,7 @@ struct ShellRenderer::Impl {
     float db_kappa = 0.6f;   // the database's κ (planar tracer)
     bool shadows_valid = false;
     float shadows_kappa = -1.0f;
+    bool shadows_own = true;
     std::array<Texture, shading::kLutCount> luts;
     std::vector<std::vector<MeshRange>> meshes;  // [prototype][layer]
     std::vector<std::size_t> cluster_proto;      // cluster → prototype slot
@@ -400,7 +401,8 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     // ---- shadow pass (only when the lights or κ changed) ---------------------------------------------
     const float kappa = s.kappa_between >= 0.0f ? s.kappa_between : m.db_kappa;
     timings_.shadows_ms = 0;
-    if (!floor_only && s.shadows && m.light_count > 0 && (!m.shadows_valid || m.shadows_kappa != kappa)) {
+    if (!floor_only && s.shadows && m.light_count > 0 &&
+        (!m.shadows_valid || m.shadows_kappa != kappa || m.shadows_own != s.own_cluster_shadow)) {
         glBeginQuery(GL_TIME_ELAPSED, m.query_shadows.id());
         m.shadow.use();
         glBindTextureUnit(0, m.density.id());
@@ -413,6 +415,7 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         glUniform1i(m.shadow.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
         glUniform1i(m.shadow.uniform("u_light_count"), m.light_count);
         glUniform1i(m.shadow.uniform("u_rays"), kShadowRays);
+        glUniform1i(m.shadow.uniform("u_own"), s.own_cluster_shadow ? 1 : 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.shadows.id());
@@ -425,6 +428,7 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         timings_.shadows_ms = static_cast<double>(ns) * 1e-6;
         m.shadows_valid = true;
         m.shadows_kappa = kappa;
+        m.shadows_own = s.own_cluster_shadow;
     }
 
     // ---- lighting pass ---------------------------------------------------------------------------
@@ -620,7 +624,7 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     static const std::vector<std::string> known = {
         "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
         "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sort_clusters",
-        "shadows", "kappa_between", "d_f"};
+        "shadows", "own_cluster_shadow", "kappa_between", "d_f"};
     for (const auto& [key, value] : j.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
             throw Error(path, "JSON /" + key, "unknown parameter (known: eta, sigma_a, alpha_R_deg, beta_R_deg, …)");
@@ -686,6 +690,10 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (j.contains("sort_clusters")) {
         if (!j["sort_clusters"].is_boolean()) throw Error(path, "JSON /sort_clusters", "expected true or false");
         s.sort_clusters = j["sort_clusters"].get<bool>();
+    }
+    if (j.contains("own_cluster_shadow")) {
+        if (!j["own_cluster_shadow"].is_boolean()) throw Error(path, "JSON /own_cluster_shadow", "expected true or false");
+        s.own_cluster_shadow = j["own_cluster_shadow"].get<bool>();
     }
     if (j.contains("shadows")) {
         if (!j["shadows"].is_boolean()) throw Error(path, "JSON /shadows", "expected true or false");

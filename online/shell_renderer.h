@@ -54,6 +54,7 @@ struct ShellSettings {
     int lobes = 7;                  // bit 0 R, bit 1 TT, bit 2 TRT
     bool multiple = true;           // dual-scattering multiple scattering (shaders/lighting/srbf_shadowed.glsl)
     bool shadows = true;            // shadows between clusters (T̃, n per lighting sample and light)
+    bool own_cluster_shadow = true; // shadow rays start on the cluster's axis, through its own fibres (false: outside it)
     float kappa_between = -1.0f;    // κ of the shadow pass (opacity per unit density per λ of path); < 0: the database's
     float d_f = 0.7f;               // Zinke's forward-scattering density factor d_f
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
@@ -67,7 +68,8 @@ struct ShellSettings {
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
-//    "debug": 0..3 (ShellSettings::debug), "sort_clusters", "shadows": true, "kappa_between", "d_f"}
+//    "debug": 0..3 (ShellSettings::debug), "sort_clusters", "shadows": true, "own_cluster_shadow": true,
+//    "kappa_between", "d_f"}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "models/core/error.h"
+#include "models/style_fit.h"
 #include "online/gl_context.h"
 #include "online/shell_renderer.h"
 #include "tools/cli.h"
@@ -17,13 +19,19 @@ namespace {
 
 struct BenchRenderOptions {
     coif::cli::SceneOptions scene;
-    std::string db, env, params;
-    int frames = 10, samples = 1, lighting_rows = 0;
-    bool json = false;
+    std::string db, env, params, data = "../shared/data";
+    int frames = 10, samples = 1, lighting_rows = 0, clusters = 64;
+    bool json = false, models = true;
 };
 
 struct FrameStats {
     double wall_ms = 0, lighting_ms = 0, shells_ms = 0;
+};
+
+struct BenchScene {
+    std::string name;
+    coif::HairStyle style;
+    double fit_seconds = 0;  // style import (models only)
 };
 
 // Median over `frames` frames after one warm-up frame (shader compilation, first-use uploads).
@@ -54,7 +62,8 @@ void add_bench_render(CLI::App& root) {
         "Frame time of `coif render`'s SATF shell renderer (SRBF Marschner lighting, 40 lights by default)\n"
         "Renders the scene --frames times after one warm-up frame into an offscreen target and reports the median wall\n"
         "time (glFinish) and the GPU time of the lighting pass and of the shells (GL_TIME_ELAPSED), then the same\n"
-        "shells in the same order with a trivial constant-colour shader (the floor) and the ratio of the two.");
+        "shells in the same order with a trivial constant-colour shader (the floor) and the ratio of the two, for the\n"
+        "--style scene and for every model in --data (fitted with --clusters clusters, as `coif style import` does).");
     o->scene.add_to(cmd);
     cmd->add_option("--db", o->db, "HRIR database; default: the cached default database (built on first use)");
     cmd->add_option("--env", o->env, "SRBF lights JSON or an environment map; default: the embedded 40 lights");
@@ -64,8 +73,13 @@ void add_bench_render(CLI::App& root) {
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))->capture_default_str();
     cmd->add_option("--samples", o->samples, "MSAA samples per pixel")->check(CLI::Range(1, 16))->capture_default_str();
+    cmd->add_option("--data", o->data, "Folder of .hair/.data models: each is fitted (coif style import) and benchmarked too")
+        ->capture_default_str();
+    cmd->add_option("--clusters", o->clusters, "Clusters fitted to each model")->check(CLI::Range(1, 100000))->capture_default_str();
+    cmd->add_flag("!--no-models", o->models, "Only the --style scene, no models from --data");
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     coif::cli::examples(cmd, "  coif bench render\n"
+                             "  coif bench render --no-models --frames 3\n"
                              "  coif bench render --width 1920 --height 1080 --frames 5 --json");
     cmd->callback([o] {
         coif::gl::ShellSettings settings;
@@ -73,42 +87,78 @@ void add_bench_render(CLI::App& root) {
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
         std::string lights_label;
         const auto lights = coif::cli::load_render_lights(o->env, &lights_label);
-        const coif::HairStyle style = coif::cli::load_style(o->scene.style);
+        std::vector<BenchScene> scenes;
+        scenes.push_back({o->scene.style, coif::cli::load_style(o->scene.style), 0.0});
+        if (o->models) {
+            namespace fs = std::filesystem;
+            std::vector<fs::path> files;
+            if (fs::is_directory(o->data))
+                for (const auto& e : fs::directory_iterator(o->data))
+                    if (e.path().extension() == ".hair" || e.path().extension() == ".data") files.push_back(e.path());
+            if (files.empty())
+                std::fprintf(stderr, "note: no .hair/.data models in %s (--data): only the default style\n", o->data.c_str());
+            std::sort(files.begin(), files.end());
+            for (const fs::path& f : files) {
+                std::fprintf(stderr, "coif: fitting %d clusters to %s\n", o->clusters, f.filename().c_str());
+                const auto t0 = std::chrono::steady_clock::now();
+                coif::FitOptions fit;
+                fit.clusters = o->clusters;
+                fit.progress = false;
+                BenchScene sc{f.filename().string(), coif::fit_style(coif::read_strands(f), fit), 0.0};
+                sc.fit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                scenes.push_back(std::move(sc));
+            }
+        }
         const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
         const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
         auto context = coif::gl::Context::headless();
-        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style), o->lighting_rows);
-        renderer.set_lights(lights);
-        const coif::Camera cam = coif::cli::shell_camera(o->scene, renderer);
-        coif::gl::RenderTarget target(cam.width, cam.height, GL_RGBA16F, settings.samples);
-        target.bind();
-        const FrameStats full = measure(renderer, cam, settings, false, o->frames);
-        const FrameStats floor = measure(renderer, cam, settings, true, o->frames);
-        const auto& st = renderer.stats();
+        nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+        for (const BenchScene& sc : scenes) {
+            coif::gl::ShellRenderer renderer(sc.style, satf, coif::gl::style_orientation(sc.style), o->lighting_rows);
+            renderer.set_lights(lights);
+            const coif::Camera cam = coif::cli::shell_camera(o->scene, renderer);
+            coif::gl::RenderTarget target(cam.width, cam.height, GL_RGBA16F, settings.samples);
+            target.bind();
+            renderer.draw(cam, settings);  // the shadow pass runs on the first frame only (lights unchanged after)
+            glFinish();
+            const double shadows_ms = renderer.timings().shadows_ms;
+            const FrameStats full = measure(renderer, cam, settings, false, o->frames);
+            const FrameStats floor = measure(renderer, cam, settings, true, o->frames);
+            const auto& st = renderer.stats();
+            rows.push_back({{"scene", sc.name}, {"fit_s", sc.fit_seconds}, {"clusters", st.clusters}, {"sectors", st.sectors},
+                            {"triangles", st.triangles}, {"lighting_samples", st.lighting_samples},
+                            {"shadow_grid", {st.grid_x, st.grid_y, st.grid_z}}, {"prepare_s", st.prepare_seconds},
+                            {"frame_ms", full.wall_ms}, {"fps", 1000.0 / full.wall_ms},
+                            {"gpu_shadow_pass_ms", shadows_ms}, {"gpu_lighting_ms", full.lighting_ms},
+                            {"gpu_shells_ms", full.shells_ms}, {"floor_ms", floor.wall_ms},
+                            {"floor_gpu_shells_ms", floor.shells_ms}, {"ratio_to_floor", full.wall_ms / floor.wall_ms}});
+        }
         nlohmann::ordered_json j = {
-            {"renderer", context->renderer()},
-            {"width", cam.width}, {"height", cam.height}, {"samples", settings.samples},
-            {"lights", lights.size()}, {"multiple_scattering", settings.multiple}, {"neighbours", settings.neighbours},
-            {"clusters", st.clusters}, {"sectors", st.sectors}, {"triangles", st.triangles},
-            {"lighting_samples", st.lighting_samples}, {"records", st.records}, {"prepare_s", st.prepare_seconds},
-            {"frame_ms", full.wall_ms}, {"fps", 1000.0 / full.wall_ms},
-            {"gpu_lighting_ms", full.lighting_ms}, {"gpu_shells_ms", full.shells_ms},
-            {"floor_ms", floor.wall_ms}, {"floor_gpu_shells_ms", floor.shells_ms},
-            {"ratio_to_floor", full.wall_ms / floor.wall_ms}, {"frames", o->frames}};
+            {"renderer", context->renderer()}, {"width", o->scene.width}, {"height", o->scene.height},
+            {"samples", settings.samples}, {"lights", lights.size()}, {"lights_source", lights_label},
+            {"multiple_scattering", settings.multiple}, {"shadows_between_clusters", settings.shadows},
+            {"neighbours", settings.neighbours}, {"records", db.size()}, {"frames", o->frames}, {"scenes", rows}};
         if (o->json) {
             std::printf("%s\n", j.dump(2).c_str());
             return;
         }
-        std::printf("renderer          %s\n", context->renderer().c_str());
-        std::printf("scene             %s: %zu clusters, %zu sectors, %zu triangles, %zu lights, %dx%d, %d sample(s)\n",
-                    o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, lights.size(), cam.width, cam.height,
-                    settings.samples);
-        std::printf("frame             %.1f ms (%.1f fps), median of %d\n", full.wall_ms, 1000.0 / full.wall_ms, o->frames);
-        std::printf("  lighting pass   %.1f ms GPU (%zu samples x %zu lights%s)\n", full.lighting_ms, st.lighting_samples,
-                    lights.size(), settings.multiple ? ", single + multiple" : ", single scattering");
-        std::printf("  shells          %.1f ms GPU (re/alpha look-up, shadow, lighting combine, compositing)\n", full.shells_ms);
-        std::printf("floor             %.1f ms (trivial shader, same shells and order)\n", floor.wall_ms);
-        std::printf("ratio to floor    %.2f\n", full.wall_ms / floor.wall_ms);
+        std::printf("renderer  %s; %dx%d, %d sample(s), %zu lights (%s), %s, shadows between clusters %s; median of %d frames\n",
+                    context->renderer().c_str(), o->scene.width, o->scene.height, settings.samples, lights.size(),
+                    lights_label.c_str(), settings.multiple ? "single + multiple scattering" : "single scattering",
+                    settings.shadows ? "on" : "off", o->frames);
+        std::printf("Per hairstyle, once: SATF parameters and look-up (prepare); per light change: the shadow pass;\n"
+                    "per frame: the lighting pass, and the shells (re/α look-up, lighting combine, blending), whose\n"
+                    "rasterisation and compositing alone is the floor (same shells, trivial shader).\n\n");
+        std::printf("%-22s %8s %9s %8s %7s %9s %9s %9s %9s %7s\n", "scene", "clusters", "triangles", "prepare", "frame",
+                    "fps", "shadows", "lighting", "shells", "floor");
+        std::printf("%-22s %8s %9s %8s %7s %9s %9s %9s %9s %7s\n", "", "", "", "s", "ms", "", "ms(once)", "ms", "ms",
+                    "ms");
+        for (const auto& r : rows)
+            std::printf("%-22s %8zu %9zu %8.2f %7.1f %9.2f %9.1f %9.1f %9.1f %7.1f   ratio %.2f\n",
+                        r["scene"].get<std::string>().c_str(), r["clusters"].get<std::size_t>(),
+                        r["triangles"].get<std::size_t>(), r["prepare_s"].get<double>(), r["frame_ms"].get<double>(),
+                        r["fps"].get<double>(), r["gpu_shadow_pass_ms"].get<double>(), r["gpu_lighting_ms"].get<double>(),
+                        r["gpu_shells_ms"].get<double>(), r["floor_ms"].get<double>(), r["ratio_to_floor"].get<double>());
     });
 }
 

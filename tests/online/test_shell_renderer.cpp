@@ -117,6 +117,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     target.bind();
     gl::ShellSettings settings;
     settings.kappa_between = 0.6f;
+    settings.own_cluster_shadow = false;  // rays start outside the own cluster: c0 sees the light unshadowed
     renderer.draw(camera, settings);
     EXPECT_GT(renderer.timings().shadows_ms, 0.0) << "the first frame runs the shadow pass";
     const std::vector<glm::vec2> sh = renderer.read_shadows();
@@ -171,6 +172,19 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     }
     std::printf("shadowed lighting, worst relative difference GPU vs CPU: %.3g\n", worst);
     EXPECT_LT(worst, 0.01) << "same bound and reason as the unshadowed comparison";
+
+    // From the axis (the default), each ray also crosses the near half of its own cluster: c1's n
+    // grows by that half (c0's full diameter + half of c1's), c0 gets half of its own diameter.
+    settings.own_cluster_shadow = true;
+    renderer.draw(camera, settings);
+    EXPECT_GT(renderer.timings().shadows_ms, 0.0) << "a changed start reruns the pass";
+    const std::vector<glm::vec2> own = renderer.read_shadows();
+    for (int r = 1; r + 1 < rows; ++r) {
+        const glm::vec2 c0 = own[static_cast<std::size_t>(r)], c1 = own[static_cast<std::size_t>(rows + r)];
+        EXPECT_GT(c0.y, 0.25 * 38.4) << "row " << r;  // half a diameter: 19.2 analytic, same noise as above
+        EXPECT_LT(c0.y, 0.75 * 38.4) << "row " << r;
+        EXPECT_GT(c1.y, sh[static_cast<std::size_t>(rows + r)].y + 0.25 * 38.4) << "row " << r;
+    }
 
     // The pass is cached: the next frame does not rerun it; κ = 0 clears every shadow.
     renderer.draw(camera, settings);
