@@ -88,8 +88,8 @@ struct ShellStats {
     float voxel = 0;                 // shadow grid voxel edge, world units
 };
 
-struct ShellTimings {  // GPU time of the last draw, milliseconds (GL_TIME_ELAPSED queries)
-    double shadows_ms = 0, lighting_ms = 0, shells_ms = 0;  // shadows_ms: 0 when the pass was cached
+struct ShellTimings {  // of the last draw, milliseconds: lighting and shells GPU time (GL_TIME_ELAPSED)
+    double shadows_ms = 0, lighting_ms = 0, shells_ms = 0;  // shadows_ms: wall time (glFinish); 0 when cached
 };
 
 class ShellRenderer {

@@ -108,6 +108,20 @@ void add_render(CLI::App& root) {
                      renderer.timings().lighting_ms + renderer.timings().shells_ms, renderer.timings().lighting_ms,
                      renderer.timings().shells_ms, st.prepare_seconds, o->output.c_str());
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d\n", st.re_norm, st.atlas_width, st.atlas_height);
+        if (settings.shadows) {
+            double direct = 0, fibres = 0;
+            const std::vector<glm::vec2> sh = renderer.read_shadows();
+            for (const glm::vec2& v : sh) {
+                direct += v.x;
+                fibres += v.y;
+            }
+            const double n = std::max<std::size_t>(1, sh.size());
+            std::fprintf(stderr,
+                         "shadows between clusters: grid %dx%dx%d of %.3g (%zu strands), pass %.1f ms; over %zu "
+                         "samples x lights: mean unoccluded fraction %.3f, mean fibres met %.2f\n",
+                         st.grid_x, st.grid_y, st.grid_z, st.voxel, st.shadow_strands, renderer.timings().shadows_ms,
+                         sh.size(), direct / n, fibres / n);
+        }
     });
 }
 

@@ -7,7 +7,8 @@
 // The light's lobe is sampled by `u_rays` rays: its centre and a ring of u_rays − 1 directions at
 // min(λ_j, 1) rad from it (a circular Gaussian exp(2(cos θ − 1)/λ²) ≈ exp(−θ²/λ²) puts its mean
 // angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays, τ = κ ∫ density. Each ray starts at
-// the lighting sample on the cluster's axis (u_own = 1), so the half of its own cluster that faces
+// two voxels from the lighting sample on the cluster's axis (u_own = 1; two voxels measured closer to
+// the reference than none: 12.2 against 11.9 dB), so the half of its own cluster that faces
 // the light shades it — what the cluster's far side gets from its own fibres, which 004 eq. 12 (one
 // shadow per layer, whatever the light) cannot give; or (u_own = 0) where the ray leaves the own
 // cluster (its outer radius over the sine of the ray's angle to the axis, at most 4 radii, plus two
@@ -79,7 +80,7 @@ void main() {
             d = normalize(cos(spread) * l + sin(spread) * (cos(phi) * e1 + sin(phi) * e2));
         }
         float across = length(d - dot(d, T) * T);
-        float start = u_own != 0 ? 0.0 : s.position.w / max(across, 0.25) + 2.0 * u_step;
+        float start = (u_own != 0 ? 0.0 : s.position.w / max(across, 0.25)) + 2.0 * u_step;
         float tau = u_kappa * optical_depth(s.position.xyz + start * d, d);
         direct += exp(-tau);
         fibres += tau;

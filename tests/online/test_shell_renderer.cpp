@@ -235,6 +235,7 @@ TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
     const Camera camera = front_camera(renderer);
     gl::ShellSettings s;
     s.samples = 1;
+    s.shadows = false;  // one cluster: its own shadow would leave little light for the other changes to move
     const Image base = renderer.render(camera, s);
     gl::ShellSettings red = s;
     red.hair = shading::linked_hair_params(1.55f, glm::vec3(0.1f, 1.5f, 3.0f), s.hair.alpha_R, s.hair.beta_R, 1.0f, s.hair.w_c);
@@ -242,12 +243,16 @@ TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
     gl::ShellSettings dark = s;
     dark.kappa_shadow = 3.0f;
     const Image shadowed = renderer.render(camera, dark);
+    gl::ShellSettings own = s;
+    own.shadows = true;
+    const Image own_shadow = renderer.render(camera, own);
     const Image back = renderer.render(camera, s);
-    // A change of σa or κ_shadow changes the image at once. Hair covers ~9 % of the frame with values
+    // A change of σa, κ_shadow or the shadows switch changes the image at once. Hair covers ~9 % of the frame with values
     // ~0.07, so half-float rounding (2^-11 relative) moves the mean |Δ| by ~3e-6; 1e-4 is 30× that.
     // Going back to the old parameters gives the old image exactly.
     EXPECT_GT(mean_abs_difference(base, changed), 1e-4);
     EXPECT_GT(mean_abs_difference(base, shadowed), 1e-4);
+    EXPECT_GT(mean_abs_difference(base, own_shadow), 1e-4);
     EXPECT_EQ(base.pixels, back.pixels);
 }
 
