@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include <random>
 #include <thread>
 
+#include "models/core/error.h"
 #include "models/core/progress.h"
 
 namespace coif {
@@ -438,6 +440,21 @@ double descriptor_distance(const Descriptor& proto, const Descriptor& cand, cons
 
 }  // namespace
 
+void check_gaussian_width(double width, const Strands& strands, const std::string& place) {
+    char value[64];
+    std::snprintf(value, sizeof value, "%g", width);
+    if (!std::isfinite(width) || !(width > 0))
+        throw Error::parameter(place, std::string("the Gaussian width must be a finite number > 0 (the model file's units), got ") + value);
+    const StrandStats stats = strand_stats(strands);
+    const double extent = glm::length(stats.bbox_max - stats.bbox_min);
+    if (!(extent > 0)) return;  // a single point: nothing to compare with
+    char range[160];
+    std::snprintf(range, sizeof range, "[%g, %g] (%g to 1 × the diagonal %g of the strands' bounding box, file units)",
+                  kMinGaussianWidthOverExtent * extent, extent, kMinGaussianWidthOverExtent, extent);
+    if (width < kMinGaussianWidthOverExtent * extent || width > extent)
+        throw Error::parameter(place, std::string("the Gaussian width ") + value + " is outside " + range + ": wrong units?");
+}
+
 HairStyle fit_style(const Strands& strands, const FitOptions& options, FitReport* report) {
     FitOptions o = options;
     const std::size_t n = strands.strand_count();
@@ -447,6 +464,7 @@ HairStyle fit_style(const Strands& strands, const FitOptions& options, FitReport
     rep = FitReport{};
     rep.requested_clusters = static_cast<std::size_t>(o.clusters);
     if (n == 0) throw std::invalid_argument("fit_style: no strands");
+    if (o.layout.gaussian_width != 0) check_gaussian_width(o.layout.gaussian_width, strands, "FitOptions layout.gaussian_width");
     const StrandStats stats = strand_stats(strands);
     rep.rotation = o.orient_y_up ? glm::dmat3(hang_axis_rotation(stats)) : glm::dmat3(1.0);
 
@@ -457,7 +475,7 @@ HairStyle fit_style(const Strands& strands, const FitOptions& options, FitReport
         lines.push_back(make_polyline(strands, i, rep.rotation));
         roots.push_back(lines.back().p.front());
     }
-    if (!(o.layout.gaussian_width > 0)) o.layout.gaussian_width = median_root_spacing(roots);
+    if (o.layout.gaussian_width == 0) o.layout.gaussian_width = median_root_spacing(roots);
     const double r_min = o.layout.gaussian_width;
     const int k = std::max(1, std::min<int>(o.clusters, static_cast<int>(n)));
 

@@ -17,7 +17,14 @@
 //     principal axes (θ) and spreads σ1, σ2; A = k σ1, B = k σ2 with k the `coverage` quantile of
 //     the crossings' normalised radius, so that that share of crossings lies inside. θ is unwrapped
 //     (with A/B swapped at quarter turns) to turn continuously. A, B are floored at the Gaussian
-//     width. Least-squares B-splines then give A(t), B(t), θ(t).
+//     width λ. Least-squares B-splines then give A(t), B(t), θ(t).
+//     λ (layout.gaussian_width, the file's units) is, unless given, the median distance from each
+//     root to its nearest neighbouring root: a kernel width that makes neighbouring strands' density
+//     overlap. A sector is (1 − v_core)/L of its cluster's half-axis deep (0.2 with the defaults), so
+//     a cluster at the floor is 0.2 λ deep whatever λ is; the HRIR database covers sectors 1.25–13 λ
+//     deep (offline/sector_generator.h), which at the automatic λ takes half-axes ≳ 6 root spacings
+//     (≳ 100 strands in a cross-section). Sparse files (the 100-strand Bangs/Curly guide sets) reach it only with
+//     few clusters and a λ well below their strand spacing (docs/db.md "Coverage").
 //  5. Density: each member's crossings of the s_t + 1 sector planes, as (v, u) runs ("strands"
 //     density source); with store_every = n only every n-th member is stored, weight n.
 //  6. Macro-clusters: clusters are visited by decreasing member count; each is compared with the
@@ -33,6 +40,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 #include "models/hair_style.h"
@@ -42,10 +50,15 @@ namespace coif {
 
 inline constexpr int kShapeSamples = 16;   // points per strand in the clustering feature
 inline constexpr double kRootWeight = 2.0;  // the root counted twice: clusters are compact at the scalp
+// A given Gaussian width must lie within [kMinGaussianWidthOverExtent, 1] × the diagonal of the strands'
+// bounding box: wider than the whole model or a millionth of it is a units mistake (and below ~1e-150
+// the 1/λ² of the density overflows).
+inline constexpr double kMinGaussianWidthOverExtent = 1e-6;
 
 struct FitOptions {
     int clusters = 64;
-    DiskLayout layout;                // gaussian_width ≤ 0: the median root spacing (nearest neighbour)
+    DiskLayout layout;                // gaussian_width 0: automatic (the median root spacing); else see
+                                      // check_gaussian_width
     int trajectory_control_points = 8;
     int profile_control_points = 6;   // A, B, θ
     double coverage = 0.98;           // share of crossings inside the ellipse at each fitting plane
@@ -75,7 +88,12 @@ struct FitReport {
     std::size_t requested_clusters = 0;
 };
 
-// Fits a style to `strands` (file coordinates); fills `report` if given.
+// Throws coif::Error::parameter(place, …) unless `width` is a usable Gaussian width λ for `strands`:
+// finite, > 0 and within [kMinGaussianWidthOverExtent, 1] × the diagonal of their bounding box.
+void check_gaussian_width(double width, const Strands& strands, const std::string& place);
+
+// Fits a style to `strands` (file coordinates); fills `report` if given. Throws coif::Error for a
+// layout.gaussian_width other than 0 that check_gaussian_width refuses.
 HairStyle fit_style(const Strands& strands, const FitOptions& options, FitReport* report = nullptr);
 
 // The fitting error of `style` for `strands` already rotated into the style's coordinates, with

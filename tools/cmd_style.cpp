@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 #include "models/core/error.h"
 #include "models/core/progress.h"
@@ -63,10 +64,10 @@ void add_style(CLI::App& root) {
         std::string in, out, name;
         coif::FitOptions fit;
         std::vector<int> grid{8, 4};
+        std::optional<double> gaussian_width;  // absent: automatic (models/style_fit.h)
         bool no_orient = false, json = false;
     };
     auto io = std::make_shared<ImportOptions>();
-    io->fit.layout.gaussian_width = 0;  // automatic
     CLI::App* imp = style->add_subcommand(
         "import",
         "Fit a cluster hairstyle to a strand file (.hair or .data): k-means clustering of the strands by root\n"
@@ -85,9 +86,14 @@ void add_style(CLI::App& root) {
     imp->add_option("--s-u", io->fit.layout.s_u, "HSVs around each cluster")->capture_default_str()->check(CLI::Range(1, 256));
     imp->add_option("--core-radius", io->fit.layout.core_radius, "Relative radius v of the transparent core, in [0, 1)")->capture_default_str()->check(CLI::Range(0.0, 0.99));
     imp->add_option("--grid", io->grid, "Density grid cells per sector along s (track) and r (across)")->expected(2)->capture_default_str()->check(CLI::Range(1, coif::kMaxGridCells));
-    imp->add_option("--gaussian-width", io->fit.layout.gaussian_width,
-                    "Width λ of each strand's density Gaussian exp(-d²/λ²), in the file's units; 0 = the median distance "
-                    "between neighbouring roots")->capture_default_str()->check(CLI::Range(0.0, 1e9));
+    imp->add_option("--gaussian-width", io->gaussian_width,
+                    "Width λ of each strand's density Gaussian exp(-d²/λ²), in the model file's units (e.g. the CT units of\n"
+                    "Bangs_100/Curly_100), also the floor of the cluster half-axes. Default: the median distance between\n"
+                    "neighbouring roots. Must be finite, > 0, and between 1e-6 and 1 times the diagonal of the model's bounding\n"
+                    "box. The HRIR database covers sectors 1.25-13 λ deep (coif db coverage); a sector is (1 - core radius) /\n"
+                    "layers = 0.2 of its cluster's half-axis deep, so a sparse model (few strands per cluster, e.g. 100 guide\n"
+                    "strands) is covered only with few clusters and a λ well below its root spacing")
+        ->type_name("W");
     imp->add_option("--coverage", io->fit.coverage, "Share of strand crossings each fitted ellipse encloses, (0, 1]")->capture_default_str()->check(CLI::Range(0.01, 1.0));
     imp->add_option("--macro-tolerance", io->fit.macro_tolerance,
                     "Clusters whose envelopes match a prototype's within this fraction of their mean radius become its "
@@ -99,15 +105,18 @@ void add_style(CLI::App& root) {
     imp->add_flag("--no-orient", io->no_orient, "Keep the file's axes even if the hair does not hang along -y");
     coif::cli::add_json_flag(imp, io->json);
     coif::cli::examples(imp, "  coif style import ../shared/data/harolongo.data --clusters 64 -o harolongo64.json\n"
-                             "  coif style import ../shared/data/Bangs_100.hair --clusters 32 -o bangs.json --json");
+                             "  coif style import ../shared/data/Bangs_100.hair --clusters 32 -o bangs.json --json\n"
+                             "  coif style import ../shared/data/Curly_100.hair --clusters 8 --gaussian-width 2 -o curly8.json");
     imp->callback([io] {
         const auto t0 = std::chrono::steady_clock::now();
         coif::FitOptions fit = io->fit;
+        fit.layout.gaussian_width = io->gaussian_width.value_or(0.0);  // 0: automatic
         fit.layout.grid_s = io->grid[0];
         fit.layout.grid_r = io->grid[1];
         fit.orient_y_up = !io->no_orient;
         fit.progress = !io->json;
         const coif::Strands strands = coif::read_strands(io->in);
+        if (io->gaussian_width) coif::check_gaussian_width(*io->gaussian_width, strands, "--gaussian-width");
         const double seconds_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         coif::FitReport report;
         coif::HairStyle style = coif::fit_style(strands, fit, &report);

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "models/core/error.h"
 #include "models/style_fit.h"
 #include "models/style_strands.h"
 #include "tests/common/run.h"
@@ -94,6 +95,67 @@ TEST(StyleFit, ImportCommandPrintsTheFittingError) {
     const test::RunResult e = test::run_coif("style export-strands '" + (dir / "b.json").string() + "' -o '" + (dir / "b.hair").string() + "'");
     ASSERT_EQ(e.exit_code, 0) << e.err;
     EXPECT_GT(read_strands(dir / "b.hair").strand_count(), 50u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(StyleFit, GaussianWidthIsCheckedAgainstTheModel) {
+    // Two straight strands 1 apart, 10 long: bounding-box diagonal √101.
+    Strands s;
+    for (int i = 0; i < 2; ++i) s.add_strand({glm::vec3(float(i), 0, 0), glm::vec3(float(i), -10, 0)});
+    const double extent = std::sqrt(101.0);
+    EXPECT_NO_THROW(check_gaussian_width(0.5, s, "w"));
+    EXPECT_NO_THROW(check_gaussian_width(extent, s, "w"));
+    for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL, 1e-300, 1.01 * extent})
+        EXPECT_THROW(check_gaussian_width(bad, s, "w"), Error) << bad;
+    FitOptions o;
+    o.clusters = 1;
+    o.progress = false;
+    o.layout.gaussian_width = -1;  // only 0 means automatic
+    EXPECT_THROW(fit_style(s, o), Error);
+    o.layout.gaussian_width = 0;
+    EXPECT_DOUBLE_EQ(fit_style(s, o).layout.gaussian_width, 1.0);  // the root spacing
+}
+
+TEST(StyleFit, ImportHonoursGaussianWidth) {
+    COIF_SHARED_DATA(path, "Bangs_100.hair");
+    const auto dir = test::scratch_dir("style-import-lambda");
+    const auto out = dir / "b.json";
+    const test::RunResult r = test::run_coif("style import '" + path.string() + "' --clusters 8 --gaussian-width 2.5 -o '" + out.string() + "' --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["gaussian_width"].get<double>(), 2.5);
+    const HairStyle style = read_style(out);
+    EXPECT_EQ(style.layout.gaussian_width, 2.5);
+    // λ also floors the half-axes: a B-spline of values ≥ 2.5 stays ≥ 2.5 (convex hull), up to rounding
+    // in the JSON (kDigits significant digits; 1e-6 relative).
+    for (const Cluster& c : style.clusters)
+        if (!c.instance_of)
+            for (int q = 0; q <= 16; ++q) {
+                EXPECT_GE(c.shape->a(q / 16.0), 2.5 * (1 - 1e-6));
+                EXPECT_GE(c.shape->b(q / 16.0), 2.5 * (1 - 1e-6));
+            }
+    // Without the option: the automatic width, the median root spacing (24.36 CT units for this file).
+    const test::RunResult a = test::run_coif("style import '" + path.string() + "' --clusters 8 -o '" + out.string() + "' --json");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_NEAR(nlohmann::json::parse(a.out)["gaussian_width"].get<double>(), 24.36, 0.01);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(StyleFit, ImportRefusesBadGaussianWidths) {
+    COIF_SHARED_DATA(path, "Bangs_100.hair");
+    const auto dir = test::scratch_dir("style-import-bad-lambda");
+    const auto out = dir / "b.json";
+    // 0 is no longer "automatic" on the command line (leave the option out); 1e6 exceeds the model's
+    // 366-unit bounding-box diagonal, 1e-300 is below a millionth of it.
+    for (const char* bad : {"0", "-1", "nan", "inf", "1e-300", "1e6"}) {
+        const test::RunResult r = test::run_coif("style import '" + path.string() + "' --clusters 8 --gaussian-width " + bad + " -o '" + out.string() + "'");
+        EXPECT_EQ(r.exit_code, 1) << bad;
+        EXPECT_NE(r.err.find("--gaussian-width"), std::string::npos) << bad << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << bad;
+    }
+    const test::RunResult r = test::run_coif("style import '" + path.string() + "' --gaussian-width wide -o '" + out.string() + "'");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_TRUE(std::filesystem::is_empty(dir));
     std::filesystem::remove_all(dir);
 }
 
