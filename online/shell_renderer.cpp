@@ -78,7 +78,8 @@ struct ShellRenderer::Impl {
     Program shadow{{"shaders/gl/shell_shadow.comp"}};
     VertexArray vao;
     Buffer vertices, indices, cluster_ids, instances, sectors, samples, lights, shadows;
-    Texture atlas, lighting_tex, density;
+    Texture atlas, lighting_tex, density, absorption;
+    bool absorption_on = false;
     DensityGrid grid;        // values dropped after upload; dims, origin and voxel kept
     float db_kappa = 0.6f;   // the database's κ (planar tracer)
     bool shadows_valid = false;
@@ -388,6 +389,32 @@ void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
     impl_->shadows_valid = false;
 }
 
+void ShellRenderer::set_absorption(const AbsorptionMap* map) {
+    Impl& m = *impl_;
+    if (!map) {
+        m.absorption_on = false;
+        return;
+    }
+    const int clusters = static_cast<int>(m.cluster_proto.size());
+    if (map->clusters != clusters || map->samples < 1)
+        throw Error::parameter("absorption map", "has " + std::to_string(map->clusters) + " cluster rows; the style has " +
+                                                     std::to_string(clusters));
+    std::vector<glm::vec4> texels(static_cast<std::size_t>(clusters) * m.lighting_rows);
+    for (int c = 0; c < clusters; ++c)
+        for (int r = 0; r < m.lighting_rows; ++r)
+            texels[static_cast<std::size_t>(c) * m.lighting_rows + r] =
+                glm::vec4(map->sample(c, static_cast<double>(r) / (m.lighting_rows - 1)), 0.0f);
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    m.absorption = Texture(id);
+    glTextureStorage2D(id, 1, GL_RGBA32F, m.lighting_rows, clusters);
+    glTextureSubImage2D(id, 0, 0, 0, m.lighting_rows, clusters, GL_RGBA, GL_FLOAT, texels.data());
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    m.absorption_on = true;
+    check_errors("ShellRenderer::set_absorption");
+}
+
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floor_only) {
     Impl& m = *impl_;
     if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
@@ -437,7 +464,8 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         const auto& b = s.hair;
         const auto& ca = m.ms_config;
         const auto& cb = s.config;
-        const bool same = m.have_ms && a.eta == b.eta && a.sigma_a == b.sigma_a && a.alpha_R == b.alpha_R &&
+        // The dual-scattering tables cover every σa (shaders/lighting/luts.glsl): σa is not compared.
+        const bool same = m.have_ms && a.eta == b.eta && a.alpha_R == b.alpha_R &&
                           a.alpha_TT == b.alpha_TT && a.alpha_TRT == b.alpha_TRT && a.beta_R == b.beta_R &&
                           a.beta_TT == b.beta_TT && a.beta_TRT == b.beta_TRT && a.ecc_a == b.ecc_a && a.w_c == b.w_c &&
                           a.delta_eta_p == b.delta_eta_p && a.d_b == b.d_b && ca.segments == cb.segments &&
@@ -486,6 +514,11 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         i1("u_lobes", s.lobes);
         i1("u_multiple", s.multiple ? 1 : 0);
         i1("u_shadows", s.shadows && m.light_count > 0 ? 1 : 0);
+        i1("u_absorption_on", m.absorption_on ? 1 : 0);
+        if (m.absorption_on) {
+            glBindTextureUnit(2 + shading::kLutCount, m.absorption.id());
+            i1("u_absorption", 2 + shading::kLutCount);
+        }
         f("u_d_f", s.d_f);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());

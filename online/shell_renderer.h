@@ -26,7 +26,10 @@
 // the fibres met n, rerun only when the lights or κ change; the lighting pass reads them
 // (shaders/lighting/srbf_shadowed.glsl).
 //
-// Not yet: per-pixel order within interpenetrating clusters, the absorption texture, AOVs.
+// Painted absorption: an optional σa per cluster and lighting row (models/absorption_map.h) in a texture
+// that the lighting pass reads instead of the settings' σa.
+//
+// Not yet: per-pixel order within interpenetrating clusters, AOVs.
 //
 // Conventions: world is y-up centimetres after `orientation` (the style's hang axis turned to −y,
 // as the strand preview does); light directions point towards the light; the camera is coif::Camera.
@@ -37,6 +40,7 @@
 #include <vector>
 
 #include "db/satf.h"
+#include "models/absorption_map.h"
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "models/hair_style.h"
@@ -102,6 +106,9 @@ public:
     ShellRenderer& operator=(const ShellRenderer&) = delete;
 
     void set_lights(std::span<const SrbfLight> lights);
+    // Painted absorption (one row per cluster of the style, any number of samples along t), or null:
+    // σa from the settings everywhere. Throws coif::Error::parameter if the cluster count differs.
+    void set_absorption(const AbsorptionMap* map);
     // Draws into the bound framebuffer (cleared to the background first). `floor` draws the same
     // shells in the same order with a trivial shader (the floor of `coif bench render`).
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);

@@ -225,33 +225,43 @@ MultipleScatteringTables build_ms_tables(const glsl::HairParams& params, const g
     vec4 f0123, f45;
     srbf_point_setup(params, config, f0123, f45);
     MultipleScatteringTables t;
-    t.ab = LutImage(LUT_N_MS, 1);
-    t.sat_delta = LutImage(LUT_N_MS, 1);
-    t.sat_sigma = LutImage(LUT_N_MS, 1);
-    t.af = LutImage(LUT_N_MS, 1);
-    std::vector<glm::dvec3> delta(LUT_N_MS), sigma(LUT_N_MS);
-    for (int i = 0; i < LUT_N_MS; ++i) {
-        const float x = lut_point_lin(i, -COIF_HALF_PI, COIF_HALF_PI, LUT_N_MS);
-        vec3 A_b, Delta_b, sigma_b;
-        zinke_terms(params, config, f0123, f45, x, A_b, Delta_b, sigma_b);
-        t.ab.at(i, 0) = glm::vec4(A_b, 0.0f);
-        vec3 a_f;
-        float beta_f2 = 0.0f;
-        zinke_forward(params, config, f0123, f45, x, a_f, beta_f2);
-        t.af.at(i, 0) = glm::vec4(a_f, beta_f2);
-        delta[i] = glm::dvec3(Delta_b);
-        sigma[i] = glm::dvec3(sigma_b);
-    }
-    // 1D summed-area tables (000 eq. 31): running trapezoid integrals from θd = -π/2 at the nodes.
+    t.ab = LutImage(LUT_N_MS, LUT_N_MS_SIGMA);
+    t.sat_delta = LutImage(LUT_N_MS, LUT_N_MS_SIGMA);
+    t.sat_sigma = LutImage(LUT_N_MS, LUT_N_MS_SIGMA);
+    t.af = LutImage(LUT_N_MS, LUT_N_MS_SIGMA);
     const double h = double(COIF_PI) / (LUT_N_MS - 1);
-    glm::dvec3 sd(0.0), ss(0.0);
-    for (int i = 0; i < LUT_N_MS; ++i) {
-        if (i > 0) {
-            sd += 0.5 * h * (delta[i - 1] + delta[i]);
-            ss += 0.5 * h * (sigma[i - 1] + sigma[i]);
+    // Every term is channel-wise, so one call computes three σa levels at once (one per channel).
+    for (int l0 = 0; l0 < LUT_N_MS_SIGMA; l0 += 3) {
+        HairParams p = params;
+        for (int c = 0; c < 3; ++c) p.sigma_a[c] = ms_sigma_level(std::min(l0 + c, LUT_N_MS_SIGMA - 1));
+        std::vector<glm::dvec3> delta(LUT_N_MS), sigma(LUT_N_MS);
+        std::vector<glm::vec3> ab(LUT_N_MS), af(LUT_N_MS), bf(LUT_N_MS);
+        for (int i = 0; i < LUT_N_MS; ++i) {
+            const float x = lut_point_lin(i, -COIF_HALF_PI, COIF_HALF_PI, LUT_N_MS);
+            vec3 A_b, Delta_b, sigma_b, a_f, beta_f2;
+            zinke_terms(p, config, f0123, f45, x, A_b, Delta_b, sigma_b);
+            zinke_forward(p, config, f0123, f45, x, a_f, beta_f2);
+            ab[i] = A_b;
+            af[i] = a_f;
+            bf[i] = beta_f2;
+            delta[i] = glm::dvec3(Delta_b);
+            sigma[i] = glm::dvec3(sigma_b);
         }
-        t.sat_delta.at(i, 0) = glm::vec4(glm::vec3(sd), 0.0f);
-        t.sat_sigma.at(i, 0) = glm::vec4(glm::vec3(ss), 0.0f);
+        // 1D summed-area tables (000 eq. 31): running trapezoid integrals from θd = -π/2 at the nodes.
+        glm::dvec3 sd(0.0), ss(0.0);
+        for (int i = 0; i < LUT_N_MS; ++i) {
+            if (i > 0) {
+                sd += 0.5 * h * (delta[i - 1] + delta[i]);
+                ss += 0.5 * h * (sigma[i - 1] + sigma[i]);
+            }
+            for (int c = 0; c < 3 && l0 + c < LUT_N_MS_SIGMA; ++c) {
+                const int row = l0 + c;
+                t.ab.at(i, row) = glm::vec4(ab[i][c], 0.0f, 0.0f, 0.0f);
+                t.sat_delta.at(i, row) = glm::vec4(static_cast<float>(sd[c]), 0.0f, 0.0f, 0.0f);
+                t.sat_sigma.at(i, row) = glm::vec4(static_cast<float>(ss[c]), 0.0f, 0.0f, 0.0f);
+                t.af.at(i, row) = glm::vec4(af[i][c], bf[i][c], 0.0f, 0.0f);
+            }
+        }
     }
     t.build_seconds = seconds_since(start);
     return t;

@@ -31,7 +31,8 @@ struct MultipleScatteringTables {
     LutSet set() const;
 };
 
-// The three 1D tables of one parameter set (needs the global tables bound or passed).
+// The dual-scattering tables of one parameter set, over θd and σa (shaders/lighting/luts.glsl): they do
+// not depend on the parameters' own σa. Needs the global tables bound or passed.
 MultipleScatteringTables build_ms_tables(const glsl::HairParams& params, const glsl::LightingConfig& config);
 
 // Exact references of table entries (double precision direct integration), for tests and checks.

@@ -23,10 +23,10 @@ enum class Lut : int {
     lut_h_trt,         // 000 eq. 23 H_k^TRT
     lut_half_mass,     // share of a circular Gaussian inside a half circle (000 eq. 28)
     lut_fresnel_fit,   // polynomial fit of the exact Fresnel term in cos(incidence), per η
-    lut_ms_ab,         // Zinke's Ā_b(θd) for one parameter set (000 eq. 29)
-    lut_ms_sat_delta,  // summed-area table of Δ̄_b(θd) (000 eq. 31)
-    lut_ms_sat_sigma,  // summed-area table of σ̄_b(θd)
-    lut_ms_af,         // forward scattering through one fibre: ā_f(θd) RGB, β̄_f²(θd) in w (shadow paths)
+    lut_ms_ab,         // Zinke's Ā_b(θd, σa) for one parameter set (000 eq. 29), one channel
+    lut_ms_sat_delta,  // summed-area table of Δ̄_b(θd, σa) over θd (000 eq. 31)
+    lut_ms_sat_sigma,  // summed-area table of σ̄_b(θd, σa)
+    lut_ms_af,         // forward scattering through one fibre: ā_f(θd, σa) in x, β̄_f² in y (shadow paths)
     count
 };
 inline constexpr int kLutCount = static_cast<int>(Lut::count);

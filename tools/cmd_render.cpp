@@ -3,9 +3,11 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "db/hrir_db.h"
 #include "db/satf.h"
+#include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "offline/srbf_lights.h"
@@ -22,7 +24,7 @@ namespace {
 struct RenderOptions {
     coif::cli::SceneOptions scene;
     std::string output = "coif.png";
-    std::string db, env, params;
+    std::string db, env, params, absorption;
     float exposure = 0.0f;
     bool preview = false;
     int samples = 4;
@@ -36,8 +38,8 @@ void add_render(CLI::App& root) {
         "Render one image of a hair scene, headless (the embedded default scene when given no arguments)\n"
         "The SATF renderer (004 §6): every cluster's layered shells with re/alpha read from the HRIR database on the\n"
         "GPU, the within-cluster shadow of 004 eq. 12, back-to-front compositing, lit by the SRBF circular-Gaussian\n"
-        "Marschner lighting (single + multiple scattering) of the environment's SRBF lights. No shadows between\n"
-        "clusters yet. Rendering goes through EGL, so no window or display is needed. docs/renderer.md has the details.\n"
+        "Marschner lighting (single + multiple scattering) of the environment's SRBF lights, with shadows between\n"
+        "clusters. Rendering goes through EGL, so no window or display is needed. docs/renderer.md has the details.\n"
         "With no --db the default database (1000 sectors) is built once into ~/.cache/coif (about 2 minutes on 2 cores)\n"
         "and reused. --preview-strands draws the strands as GL lines with a Kajiya-Kay preview instead.\n"
         "Output: .png (tone-mapped sRGB: exposure, clip, sRGB curve) or .exr (linear half float); written atomically.");
@@ -50,6 +52,9 @@ void add_render(CLI::App& root) {
     render->add_option("--params", o->params,
                        "Scattering parameters JSON (keys: eta, sigma_a, alpha_R_deg, beta_R_deg, …, kappa_shadow, lobes, "
                        "multiple, neighbours; see online/shell_renderer.h); default: 000's brown hair");
+    render->add_option("--absorption", o->absorption,
+                       "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
+                       "--params' sigma_a");
     render->add_option("--lighting-rows", o->lighting_rows,
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))->capture_default_str();
@@ -59,6 +64,7 @@ void add_render(CLI::App& root) {
     coif::cli::examples(render, "  coif render -o hair.png\n"
                                 "  coif render --db db4k.db --env ../shared/data/blender_studiolight_city.exr --azimuth 90 -o side.exr\n"
                                 "  coif render --params red.json --width 1920 --height 1080 -o hd.png\n"
+                                "  coif render --absorption dyed.exr -o dyed.png   # from coif style paint-absorption\n"
                                 "  coif render --preview-strands --strands ../shared/data/harolongo.data -o lines.png");
     render->callback([o] {
         {  // refuse a bad output name before any work (the default database may take minutes to build)
@@ -89,11 +95,14 @@ void add_render(CLI::App& root) {
         std::string lights_label;
         const std::vector<coif::SrbfLight> lights = coif::cli::load_render_lights(o->env, &lights_label);
         const coif::HairStyle style = coif::cli::load_style(o->scene.style);
+        std::optional<coif::AbsorptionMap> absorption;
+        if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, style.clusters.size());
         const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
         const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
         auto context = coif::gl::Context::headless();
         coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style), o->lighting_rows);
         renderer.set_lights(lights);
+        if (absorption) renderer.set_absorption(&*absorption);
         const coif::Camera camera = coif::cli::shell_camera(o->scene, renderer);
         const coif::Image image = renderer.render(camera, settings);
         wo.description = "coif render: SATF shells, SRBF Marschner lighting; style " + o->scene.style + "; database " +

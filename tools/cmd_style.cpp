@@ -1,9 +1,11 @@
-// coif style import|inspect|export-strands — cluster hairstyles (JSON, models/hair_style.h).
+// coif style import|inspect|export-strands|paint-absorption — cluster hairstyles (JSON, models/hair_style.h).
 #include <chrono>
 #include <cstdio>
 #include <numbers>
 #include <optional>
+#include <sstream>
 
+#include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "models/core/progress.h"
 #include "models/hair_style.h"
@@ -11,6 +13,7 @@
 #include "models/strands.h"
 #include "models/style_fit.h"
 #include "models/style_strands.h"
+#include "shaders/lighting.h"
 #include "tools/assets.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"
@@ -273,6 +276,95 @@ void add_style(CLI::App& root) {
         if (strands.strand_count() == 0) throw coif::Error(eo->file, "", "the style yields no strands (" + eo->from + ")");
         coif::write_hair(eo->out, strands);
         std::fprintf(stderr, "wrote %s: %zu strands, %zu points\n", eo->out.c_str(), strands.strand_count(), strands.points.size());
+    });
+
+    struct PaintOptions {
+        std::string file, out, base;
+        std::vector<float> root, tip;
+        double tip_from = 0.0;
+        int samples = 16;
+        std::vector<std::string> streaks;
+    };
+    auto po = std::make_shared<PaintOptions>();
+    CLI::App* paint = style->add_subcommand(
+        "paint-absorption",
+        "Paint the fibres' absorption σa per cluster and along the clusters (dyed tips, greying roots, streaks)\n"
+        "Writes an absorption map (models/absorption_map.h: a float EXR, one row per cluster in the style's order,\n"
+        "columns from root to tip, RGB = σa per unit fibre radius) for `coif render --absorption`. Start from --base or\n"
+        "from a root-to-tip gradient (--root, --tip, blending from --tip-from to the tip), then paint --streak clusters\n"
+        "in one colour. Any image editor that keeps float EXRs can paint the map further. σa values: 000's brown is\n"
+        "0.432 0.612 0.98; lower is lighter (blond ~0.1 0.2 0.4), higher darker; equal RGB is grey.");
+    paint->add_option("style", po->file, "Style file (JSON), or @default")->required();
+    paint->add_option("-o,--output", po->out, "The absorption map to write (.exr, atomically)")->required();
+    paint->add_option("--base", po->base, "Start from this absorption map instead of the gradient");
+    paint->add_option("--root", po->root, "σa R G B at the roots (default: 000's brown)")->expected(3);
+    paint->add_option("--tip", po->tip, "σa R G B at the tips (default: as the roots)")->expected(3);
+    paint->add_option("--tip-from", po->tip_from, "Where along the cluster (0 root .. 1 tip) the blend to --tip starts")
+        ->capture_default_str()->check(CLI::Range(0.0, 0.999));
+    paint->add_option("--samples", po->samples, "Columns along each cluster")->capture_default_str()->check(CLI::Range(1, 4096));
+    paint->add_option("--streak", po->streaks,
+                      "CLUSTERS:R,G,B — these clusters (indices and ranges, e.g. 3,7,10-12) get σa R G B along their "
+                      "whole length; repeatable");
+    coif::cli::examples(paint, "  coif style paint-absorption @default --tip 0.05 0.12 0.3 --tip-from 0.6 -o dyed.exr\n"
+                               "  coif style paint-absorption @default --streak 3,7,20-23:0.02,0.02,0.02 -o streaks.exr\n"
+                               "  coif render --absorption dyed.exr -o dyed.png");
+    paint->callback([po] {
+        if (fs::path(po->out).extension() != ".exr") throw coif::Error(po->out, "", "the output must be a .exr file (float σa)");
+        const coif::HairStyle s = load_style(po->file);
+        const int clusters = static_cast<int>(s.clusters.size());
+        const auto colour = [](const std::vector<float>& v, const char* what, glm::vec3 fallback) {
+            if (v.empty()) return fallback;
+            for (float x : v)
+                if (!std::isfinite(x) || x < 0.0f || x > coif::kMaxPaintedSigmaA)
+                    throw coif::Error::parameter(what, "σa must be finite and in [0, 10000]");
+            return glm::vec3(v[0], v[1], v[2]);
+        };
+        const glm::vec3 root = colour(po->root, "--root", coif::shading::default_hair_params().sigma_a);
+        const glm::vec3 tip = colour(po->tip, "--tip", root);
+        coif::AbsorptionMap map;
+        if (!po->base.empty()) {
+            map = coif::read_absorption_map(po->base, s.clusters.size());
+        } else {
+            map = coif::AbsorptionMap(clusters, po->samples, root);
+            for (int c = 0; c < clusters; ++c)
+                for (int i = 0; i < po->samples; ++i) {
+                    const double t = po->samples > 1 ? static_cast<double>(i) / (po->samples - 1) : 0.0;
+                    const float f = t <= po->tip_from ? 0.0f : static_cast<float>((t - po->tip_from) / (1.0 - po->tip_from));
+                    map.at(c, i) = root * (1.0f - f) + tip * f;
+                }
+        }
+        for (const std::string& streak : po->streaks) {
+            const auto colon = streak.find(':');
+            if (colon == std::string::npos) throw coif::Error::parameter("--streak", "expected CLUSTERS:R,G,B, got '" + streak + "'");
+            std::vector<float> rgb;
+            std::stringstream cs(streak.substr(colon + 1));
+            for (std::string item; std::getline(cs, item, ',');) {
+                try {
+                    rgb.push_back(std::stof(item));
+                } catch (const std::exception&) {
+                    throw coif::Error::parameter("--streak", "'" + item + "' is not a number in '" + streak + "'");
+                }
+            }
+            if (rgb.size() != 3) throw coif::Error::parameter("--streak", "needs three σa values after ':' in '" + streak + "'");
+            const glm::vec3 sigma = colour(rgb, "--streak", root);
+            std::stringstream ls(streak.substr(0, colon));
+            for (std::string item; std::getline(ls, item, ',');) {
+                int a = 0, b = 0;
+                try {
+                    const auto dash = item.find('-');
+                    a = std::stoi(item.substr(0, dash));
+                    b = dash == std::string::npos ? a : std::stoi(item.substr(dash + 1));
+                } catch (const std::exception&) {
+                    throw coif::Error::parameter("--streak", "'" + item + "' is not a cluster index or range in '" + streak + "'");
+                }
+                if (a < 0 || b < a || b >= clusters)
+                    throw coif::Error::parameter("--streak", "clusters '" + item + "' outside 0.." + std::to_string(clusters - 1));
+                for (int c = a; c <= b; ++c)
+                    for (int i = 0; i < map.samples; ++i) map.at(c, i) = sigma;
+            }
+        }
+        coif::write_absorption_map(po->out, map);
+        std::fprintf(stderr, "wrote %s: %d clusters x %d samples of sigma_a\n", po->out.c_str(), map.clusters, map.samples);
     });
 }
 

@@ -37,12 +37,18 @@ uniform LightingConfig u_config;
 uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT
 uniform int u_multiple;  // dual scattering on/off
 uniform int u_shadows;   // shadows between clusters on/off
+uniform int u_absorption_on;     // painted absorption (models/absorption_map.h) on/off
+uniform sampler2D u_absorption;  // σa per lighting sample: texel (row, cluster), RGB32F
 uniform float u_d_f;     // Zinke's forward density factor d_f
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= u_sample_count) return;
     LightingSample s = samples[i];
+    int cluster = i / u_rows;
+    int row = i - cluster * u_rows;
+    HairParams hp = u_hair;
+    if (u_absorption_on != 0) hp.sigma_a = texelFetch(u_absorption, ivec2(row, cluster), 0).rgb;
     vec3 T = normalize(s.tangent.xyz);
     vec3 r0 = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
     vec3 w = cross(T, r0);
@@ -52,7 +58,7 @@ void main() {
     hair_angles(V, T, r0, w, theta_o, phi_o);
     vec4 f0123;
     vec4 f45;
-    srbf_point_setup(u_hair, u_config, f0123, f45);
+    srbf_point_setup(hp, u_config, f0123, f45);
     vec3 C[5];
     vec3 S[5];
     for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
@@ -63,9 +69,9 @@ void main() {
         float phi_j;
         hair_angles(l, T, r0, w, theta_j, phi_j);
         vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
-        vec3 m = sh.x * srbf_single_lobes(u_hair, u_config, f0123, f45, u_lobes, theta_o, phi_o, theta_j, phi_j, lambda_j);
+        vec3 m = sh.x * srbf_single_lobes(hp, u_config, f0123, f45, u_lobes, theta_o, phi_o, theta_j, phi_j, lambda_j);
         if (u_multiple != 0)
-            m += srbf_shadowed_multiple(u_hair, u_config, f0123, f45, u_d_f, theta_o, phi_o, theta_j, phi_j, lambda_j,
+            m += srbf_shadowed_multiple(hp, u_config, f0123, f45, u_d_f, theta_o, phi_o, theta_j, phi_j, lambda_j,
                                         sh.x, sh.y);
         vec3 wj = lights[j].radiance.rgb * m;
         float psi = sector_azimuth(l, T, r0);
@@ -86,8 +92,6 @@ void main() {
         v[o + 3] = S[k].x; v[o + 4] = S[k].y; v[o + 5] = S[k].z;
     }
     v[27] = 0.0;
-    int cluster = i / u_rows;
-    int row = i - cluster * u_rows;
     for (int m = 0; m < 7; ++m)
         imageStore(u_out, ivec2(row, cluster * 7 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
 }

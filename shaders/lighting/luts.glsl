@@ -78,26 +78,47 @@ COIF_FN void fetch_fresnel_fit(float eta, OUT(vec4) f0123, OUT(vec4) f45) {
     f45 = COIF_LUT(lut_fresnel_fit, vec2(0.75, v));
 }
 
-// Dual-scattering tables of one parameter set, θd ∈ [-π/2, π/2] (000 §5): Ā_b, and the running
-// integrals ∫_{-π/2}^{θd} Δ̄_b and ∫ σ̄_b (1D summed-area tables, 000 eq. 31).
+// Dual-scattering tables of one parameter set except σa (000 §5): per colour channel, over θd ∈
+// [-π/2, π/2] (x) and the channel's absorption σa (y, LUT_N_MS_SIGMA levels of u = σa/(σa + 1), so
+// [0, ∞) maps to [0, 1]): Ā_b, the running integrals ∫_{-π/2}^{θd} Δ̄_b and ∫ σ̄_b (1D summed-area
+// tables, 000 eq. 31), and the forward terms ā_f, β̄_f² of the shadow path. Every dual-scattering
+// term is computed channel by channel, so a table over one scalar σa serves all three channels — and
+// σa can change per shading point (painted absorption) or per frame without rebuilding anything.
+const int LUT_N_MS_SIGMA = 32;
 COIF_FN float ms_coord(float theta_d) {
     return lut_coord_lin(theta_d, -COIF_HALF_PI, COIF_HALF_PI, LUT_N_MS);
 }
-COIF_FN vec3 fetch_ms_Ab(float theta_d) {
-    vec4 t = COIF_LUT(lut_ms_ab, vec2(ms_coord(theta_d), 0.5));
-    return vec3(t.x, t.y, t.z);
+COIF_FN float ms_sigma_coord(float sigma_a) {
+    return lut_coord_lin(sigma_a / (sigma_a + 1.0), 0.0, 1.0, LUT_N_MS_SIGMA);
 }
-COIF_FN vec3 fetch_ms_sat_delta(float theta_d) {
-    vec4 t = COIF_LUT(lut_ms_sat_delta, vec2(ms_coord(theta_d), 0.5));
-    return vec3(t.x, t.y, t.z);
+// σa of level l (the top level stands for σa → ∞).
+COIF_FN float ms_sigma_level(int l) {
+    float u = min(float(l) / float(LUT_N_MS_SIGMA - 1), 1.0 - 1e-5);
+    return u / (1.0 - u);
 }
-COIF_FN vec3 fetch_ms_sat_sigma(float theta_d) {
-    vec4 t = COIF_LUT(lut_ms_sat_sigma, vec2(ms_coord(theta_d), 0.5));
-    return vec3(t.x, t.y, t.z);
+COIF_FN float fetch_ms_Ab(float theta_d, float sigma_a) {
+    return COIF_LUT(lut_ms_ab, vec2(ms_coord(theta_d), ms_sigma_coord(sigma_a))).x;
 }
-// Forward scattering through one fibre: ā_f(θd) (RGB) and β̄_f² (rad²), see zinke_forward.
-COIF_FN vec4 fetch_ms_forward(float theta_d) {
-    return COIF_LUT(lut_ms_af, vec2(ms_coord(theta_d), 0.5));
+COIF_FN vec3 fetch_ms_sat_delta(float theta_d, vec3 sigma_a) {
+    float x = ms_coord(theta_d);
+    return vec3(COIF_LUT(lut_ms_sat_delta, vec2(x, ms_sigma_coord(sigma_a.x))).x,
+                COIF_LUT(lut_ms_sat_delta, vec2(x, ms_sigma_coord(sigma_a.y))).x,
+                COIF_LUT(lut_ms_sat_delta, vec2(x, ms_sigma_coord(sigma_a.z))).x);
+}
+COIF_FN vec3 fetch_ms_sat_sigma(float theta_d, vec3 sigma_a) {
+    float x = ms_coord(theta_d);
+    return vec3(COIF_LUT(lut_ms_sat_sigma, vec2(x, ms_sigma_coord(sigma_a.x))).x,
+                COIF_LUT(lut_ms_sat_sigma, vec2(x, ms_sigma_coord(sigma_a.y))).x,
+                COIF_LUT(lut_ms_sat_sigma, vec2(x, ms_sigma_coord(sigma_a.z))).x);
+}
+// Forward scattering through one fibre: ā_f(θd) per channel (xyz) and β̄_f² (rad²) averaged over the
+// channels (w), see zinke_forward.
+COIF_FN vec4 fetch_ms_forward(float theta_d, vec3 sigma_a) {
+    float x = ms_coord(theta_d);
+    vec4 r = COIF_LUT(lut_ms_af, vec2(x, ms_sigma_coord(sigma_a.x)));
+    vec4 g = COIF_LUT(lut_ms_af, vec2(x, ms_sigma_coord(sigma_a.y)));
+    vec4 b = COIF_LUT(lut_ms_af, vec2(x, ms_sigma_coord(sigma_a.z)));
+    return vec4(r.x, g.x, b.x, (r.y + g.y + b.y) / 3.0);
 }
 
 #endif

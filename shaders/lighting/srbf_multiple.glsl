@@ -152,15 +152,15 @@ COIF_FN void ms_theta_d_window(float theta_o, float theta_j, float lambda_f, OUT
 // 𝓜^L (000 eq. 29-31): the azimuthal factor (π - |φo - φj|)/π² (eq. 30) times a θi integral whose
 // Gaussian uses the means Δ̃_b, σ̃_b of Δ̄_b, σ̄_b over the light's spread (two fetches each into the
 // summed-area tables); then the linear quadrature of Ā_b(θd) cos θi / cos²θd, per colour channel.
-COIF_FN vec3 srbf_ms_local(LightingConfig cfg, float theta_o, float phi_o, float theta_j, float phi_j,
+COIF_FN vec3 srbf_ms_local(LightingConfig cfg, vec3 sigma_a, float theta_o, float phi_o, float theta_j, float phi_j,
                            float lambda_f) {
     float dphi = wrap_pi(phi_o - phi_j);
     float azimuthal = (COIF_PI - abs(dphi)) / (COIF_PI * COIF_PI);
     float a;
     float b;
     ms_theta_d_window(theta_o, theta_j, lambda_f, a, b);
-    vec3 delta_mean = (fetch_ms_sat_delta(b) - fetch_ms_sat_delta(a)) / (b - a);
-    vec3 sigma_mean = (fetch_ms_sat_sigma(b) - fetch_ms_sat_sigma(a)) / (b - a);
+    vec3 delta_mean = (fetch_ms_sat_delta(b, sigma_a) - fetch_ms_sat_delta(a, sigma_a)) / (b - a);
+    vec3 sigma_mean = (fetch_ms_sat_sigma(b, sigma_a) - fetch_ms_sat_sigma(a, sigma_a)) / (b - a);
     int m = clamp(cfg.segments, 2, LIGHTING_MAX_SEGMENTS);
     vec3 result = vec3(0.0);
     for (int c = 0; c < 3; ++c) {
@@ -178,8 +178,7 @@ COIF_FN vec3 srbf_ms_local(LightingConfig cfg, float theta_o, float phi_o, float
             if (s < m && ci > 1e-6) {
                 float theta_d = 0.5 * (theta_o - x);
                 float cd = cos(theta_d);
-                vec3 ab = fetch_ms_Ab(theta_d);
-                f = ab[c] * ci / max(cd * cd, 1e-8);
+                f = fetch_ms_Ab(theta_d, sigma_a[c]) * ci / max(cd * cd, 1e-8);
             }
             acc += gauss_linear_segment(x_prev, x, vec3(f_prev), vec3(f), gp.mu, gp.lambda).x;
             x_prev = x;
@@ -197,7 +196,7 @@ COIF_FN vec3 srbf_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f
     vec3 g_sum = srbf_ms_global_lobe(LOBE_R, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_f) +
                   srbf_ms_global_lobe(LOBE_TT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_f) +
                   srbf_ms_global_lobe(LOBE_TRT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_f);
-    return g_sum + hp.d_b * srbf_ms_local(cfg, theta_o, phi_o, theta_j, phi_j, lambda_f);
+    return g_sum + hp.d_b * srbf_ms_local(cfg, hp.sigma_a, theta_o, phi_o, theta_j, phi_j, lambda_f);
 }
 
 // ---- Zinke's dual-scattering terms from the circular-Gaussian N_t (000 eq. 32-33) -----------------
@@ -350,18 +349,17 @@ COIF_FN void zinke_terms(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45
 
 // What one fibre does to light passing forward through it (Zinke et al. 2008 §4, the shadow path of
 // 000 eq. 3 and 5): the forward attenuation ā_f(θd) = Σ_t ā_{f,t} and the ā_f-weighted mean
-// longitudinal variance β̄_f² (rad², averaged over the colour channels). n fibres on the path give
-// T_f = d_f ā_f^n and σ̄_f² = n β̄_f² (the renderer's shadow pass supplies n).
+// longitudinal variance β̄_f² (rad², per channel). n fibres on the path give T_f = ā_f^n and
+// σ̄_f² = n β̄_f² (the renderer's shadow pass supplies n).
 COIF_FN void zinke_forward(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) a_f,
-                           OUT(float) beta_f2) {
+                           OUT(vec3) beta_f2) {
     vec3 ab;
     vec3 alpha_f;
     vec3 alpha_b;
     vec3 bf2;
     vec3 beta_b2;
     zinke_lobe_sums(hp, cfg, f0123, f45, x, a_f, ab, alpha_f, alpha_b, bf2, beta_b2);
-    vec3 v = bf2 / a_f;
-    beta_f2 = (v.x + v.y + v.z) / 3.0;
+    beta_f2 = bf2 / a_f;
 }
 
 #endif

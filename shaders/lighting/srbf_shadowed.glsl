@@ -37,9 +37,9 @@ COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, ve
 COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float d_f, float theta_o,
                                     float phi_o, float theta_j, float phi_j, float lambda_j, float direct,
                                     float fibres) {
-    vec3 ms = direct * hp.d_b * srbf_ms_local(cfg, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    vec3 ms = direct * hp.d_b * srbf_ms_local(cfg, hp.sigma_a, theta_o, phi_o, theta_j, phi_j, lambda_j);
     if (fibres > 0.0) {
-        vec4 fw = fetch_ms_forward(theta_j);
+        vec4 fw = fetch_ms_forward(theta_j, hp.sigma_a);
         vec3 T_f = exp(log(max(vec3(fw.x, fw.y, fw.z), vec3(1e-6))) * fibres);
         vec3 share = d_f * max(T_f - vec3(direct), vec3(0.0));
         if (max(max(share.x, share.y), share.z) > 0.0)

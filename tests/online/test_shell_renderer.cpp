@@ -197,6 +197,50 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     }
 }
 
+TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {
+    auto context = gl::Context::headless();
+    const HairStyle style = two_cluster_style();
+    gl::ShellRenderer renderer(style, test_index(), glm::mat3(1.0f));
+    SrbfLight light;
+    light.L = glm::vec3(1.0f);
+    light.omega = glm::normalize(glm::vec3(0.2f, 0.6f, 0.8f));
+    light.lambda = 0.3f;
+    const SrbfLight lights[] = {light};
+    renderer.set_lights(lights);
+    const Camera camera = front_camera(renderer);
+    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
+    target.bind();
+    gl::ShellSettings settings;
+    renderer.draw(camera, settings);
+    const std::vector<float> plain = renderer.read_lighting();
+    // A map holding the settings' σa everywhere gives the same lighting, bit for bit (same values,
+    // same code path but for where σa is read from).
+    AbsorptionMap same(2, 3, settings.hair.sigma_a);
+    renderer.set_absorption(&same);
+    renderer.draw(camera, settings);
+    EXPECT_EQ(renderer.read_lighting(), plain);
+    // Lighter (blond) σa on cluster 1 only: its lighting rises (less absorbed TT/TRT and multiple
+    // scattering), cluster 0's stays exactly as it was.
+    AbsorptionMap dyed = same;
+    for (int i = 0; i < dyed.samples; ++i) dyed.at(1, i) = glm::vec3(0.05f, 0.1f, 0.2f);
+    renderer.set_absorption(&dyed);
+    renderer.draw(camera, settings);
+    const std::vector<float> lit = renderer.read_lighting();
+    const std::size_t per_cluster = static_cast<std::size_t>(renderer.lighting_rows()) * 27;
+    for (std::size_t q = 0; q < per_cluster; ++q) EXPECT_EQ(lit[q], plain[q]) << q;
+    double before = 0, after = 0;
+    for (int r = 0; r < renderer.lighting_rows(); ++r) {
+        before += plain[per_cluster + static_cast<std::size_t>(r) * 27];
+        after += lit[per_cluster + static_cast<std::size_t>(r) * 27];
+    }
+    EXPECT_GT(after, 1.2 * before) << "blond fibres scatter more light (C_0, red)";
+    renderer.set_absorption(nullptr);
+    renderer.draw(camera, settings);
+    EXPECT_EQ(renderer.read_lighting(), plain);
+    AbsorptionMap wrong(3, 2, glm::vec3(0.5f));
+    EXPECT_THROW(renderer.set_absorption(&wrong), Error);
+}
+
 std::vector<SrbfLight> two_lights() {
     SrbfLight a, b;
     a.L = glm::vec3(2.0f, 1.8f, 1.5f);

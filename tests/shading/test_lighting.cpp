@@ -256,7 +256,7 @@ TEST(Evaluator, SumsLightsAndAppliesShadowTerms) {
     const PointLighting deep = eval.shade(frame, view, std::span(&a, 1), std::span(&behind, 1), true, 0.7f);
     const glm::vec4 fw = [&] {
         const LutBinding bind = eval.bind();
-        return coif::glsl::fetch_ms_forward(theta_j);
+        return coif::glsl::fetch_ms_forward(theta_j, eval.params().sigma_a);
     }();
     EXPECT_GT(fw.x, 0.05f) << "a fibre passes some light forward";
     EXPECT_LT(fw.x, 1.0f) << "and absorbs or reflects some";

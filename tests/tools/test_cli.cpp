@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "models/absorption_map.h"
 #include "models/core/image.h"
 #include "tests/common/run.h"
 
@@ -75,6 +76,31 @@ TEST(Cli, FailuresExitOneNameTheFileAndWriteNothing) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_THAT(r.err, HasSubstr("unknown image extension"));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // only bad.hair
+    fs::remove_all(dir);
+}
+
+TEST(Cli, PaintAbsorptionWritesAMapAndRefusesBadStrokes) {
+    const auto dir = test::scratch_dir("cli-paint");
+    const auto map = dir / "dyed.exr";
+    auto r = run_coif("style paint-absorption @default --tip 0.05 0.1 0.3 --tip-from 0.5 --streak 1,3-4:2,2,2 -o '" +
+                      map.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("64 clusters x 16 samples"));
+    const AbsorptionMap m = read_absorption_map(map, 64);
+    EXPECT_FLOAT_EQ(m.at(0, 0).x, 0.432f) << "roots keep 000's brown";
+    EXPECT_FLOAT_EQ(m.at(0, 15).z, 0.3f) << "tips as asked";
+    EXPECT_FLOAT_EQ(m.at(4, 15).x, 2.0f) << "streaked cluster, whole length";
+    for (const char* bad : {"--streak 64:1,1,1", "--streak 1:1,1", "--streak x:1,1,1", "--root -1 0 0", "--tip nan 1 1"}) {
+        r = run_coif(std::string("style paint-absorption @default ") + bad + " -o '" + (dir / "bad.exr").string() + "'");
+        EXPECT_NE(r.exit_code, 0) << bad;
+        EXPECT_FALSE(fs::exists(dir / "bad.exr")) << bad;
+    }
+    // A map of another style's cluster count is refused by render before anything is written.
+    write_absorption_map(dir / "three.exr", AbsorptionMap(3, 2, glm::vec3(0.5f)));
+    r = run_coif("render --absorption '" + (dir / "three.exr").string() + "' -o '" + (dir / "out.png").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("64 clusters"));
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
     fs::remove_all(dir);
 }
 
