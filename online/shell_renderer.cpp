@@ -459,6 +459,11 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     }
 
     // ---- lighting pass ---------------------------------------------------------------------------
+    using Clock = std::chrono::steady_clock;
+    const auto wall_ms = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
+    if (s.timed) glFinish();
+    auto t_pass = Clock::now();
+    timings_.lighting_wall_ms = timings_.shells_wall_ms = 0;
     if (!floor_only) {
         const auto& a = m.ms_params;
         const auto& b = s.hair;
@@ -529,6 +534,12 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         glEndQuery(GL_TIME_ELAPSED);
     }
 
+    if (s.timed) {
+        glFinish();
+        timings_.lighting_wall_ms = floor_only ? 0.0 : wall_ms(t_pass);
+        t_pass = Clock::now();
+    }
+
     // ---- shells ------------------------------------------------------------------------------------
     glBeginQuery(GL_TIME_ELAPSED, m.query_shells.id());
     const Program& prog = floor_only ? m.floor : m.shade;
@@ -592,6 +603,10 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glEndQuery(GL_TIME_ELAPSED);
+    if (s.timed) {
+        glFinish();
+        timings_.shells_wall_ms = wall_ms(t_pass);
+    }
     check_errors("ShellRenderer::draw");
     GLuint64 ns = 0;
     if (!floor_only) {

@@ -67,6 +67,7 @@ struct ShellSettings {
     int samples = 4;                // MSAA samples of the offscreen target
     bool sort_clusters = true;      // back-to-front order of clusters (off: style order, for error figures)
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re)
+    bool timed = false;             // glFinish around each pass and wall-clock timings (benchmarks; see ShellTimings)
 };
 // Reads a parameters file (JSON object; every key optional; degrees for angles):
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
@@ -92,8 +93,14 @@ struct ShellStats {
     float voxel = 0;                 // shadow grid voxel edge, world units
 };
 
-struct ShellTimings {  // of the last draw, milliseconds: lighting and shells GPU time (GL_TIME_ELAPSED)
-    double shadows_ms = 0, lighting_ms = 0, shells_ms = 0;  // shadows_ms: wall time (glFinish); 0 when cached
+// Of the last draw, milliseconds. lighting_ms and shells_ms are GL_TIME_ELAPSED queries, which llvmpipe
+// does not attribute reliably (its rasteriser runs on after the query ends: measured, a lighting pass
+// of 0.5 ms read 430 ms); with ShellSettings::timed the *_wall_ms are wall-clock times of each pass
+// between glFinish calls, which are what `coif bench render` reports.
+struct ShellTimings {
+    double shadows_ms = 0;  // wall time of the shadow pass (glFinish); 0 when cached
+    double lighting_ms = 0, shells_ms = 0;
+    double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
 };
 
 class ShellRenderer {

@@ -69,7 +69,9 @@ void main() {
         float phi_j;
         hair_angles(l, T, r0, w, theta_j, phi_j);
         vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
-        vec3 m = sh.x * srbf_single_lobes(hp, u_config, f0123, f45, u_lobes, theta_o, phi_o, theta_j, phi_j, lambda_j);
+        vec3 m = vec3(0.0);
+        if (sh.x > MS_NEGLIGIBLE)
+            m = sh.x * srbf_single_lobes(hp, u_config, f0123, f45, u_lobes, theta_o, phi_o, theta_j, phi_j, lambda_j);
         if (u_multiple != 0)
             m += srbf_shadowed_multiple(hp, u_config, f0123, f45, u_d_f, theta_o, phi_o, theta_j, phi_j, lambda_j,
                                         sh.x, sh.y);

@@ -21,6 +21,10 @@
 #include "shaders/lighting/srbf_multiple.glsl"
 
 const float MS_DEFAULT_D_F = 0.7;  // Zinke et al. 2008: density factor of forward scattering
+// Below this weight (T̃, or d_f (T_f − T̃)) a term is skipped: it scales quantities of the order of the
+// unshadowed ones, so skipping changes a light's contribution by less than 1e-4 of its unshadowed
+// value. Deep inside hair most pairs fall below it (the default style: mean T̃ 0.12, n ≈ 60).
+const float MS_NEGLIGIBLE = 1e-4;
 
 // Σ of the enabled single-scattering lobes (bit 0 R, bit 1 TT, bit 2 TRT) of one light.
 COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, int lobes, float theta_o,
@@ -37,12 +41,13 @@ COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, ve
 COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float d_f, float theta_o,
                                     float phi_o, float theta_j, float phi_j, float lambda_j, float direct,
                                     float fibres) {
-    vec3 ms = direct * hp.d_b * srbf_ms_local(cfg, hp.sigma_a, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    vec3 ms = vec3(0.0);
+    if (direct > MS_NEGLIGIBLE) ms = direct * hp.d_b * srbf_ms_local(cfg, hp.sigma_a, theta_o, phi_o, theta_j, phi_j, lambda_j);
     if (fibres > 0.0) {
         vec4 fw = fetch_ms_forward(theta_j, hp.sigma_a);
         vec3 T_f = exp(log(max(vec3(fw.x, fw.y, fw.z), vec3(1e-6))) * fibres);
         vec3 share = d_f * max(T_f - vec3(direct), vec3(0.0));
-        if (max(max(share.x, share.y), share.z) > 0.0)
+        if (max(max(share.x, share.y), share.z) > MS_NEGLIGIBLE)
             ms += share * srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, fibres * fw.w);
     }
     return ms;
