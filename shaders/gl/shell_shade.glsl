@@ -1,0 +1,148 @@
+// The shading of one fragment of a SATF layer mesh (004 §6.2–6.5) lit by the SRBF Marschner lighting
+// (000), see online/shell_renderer.h for what each input holds and docs/renderer.md for the choices.
+//
+//   re/α     the HSV's two boundary sectors β⊤ (i) and β⊥ (i+1) each blend their nearest database
+//            records (ids and weights from the FLANN look-up, once per hairstyle); each record is
+//            read at (x, θv) with one bilinear fetch per 4 channels from the record atlas (x along the
+//            HRIR, θv between the two nearest views; both periodic); the two sectors are mixed by
+//            γ = the fragment's position along t across the HSV (004 eq. 7).
+//   lighting Σ_j w_j re(x, θv, θl_j) in the Fourier form of DESIGN.md decision 1: the lighting pass
+//            (shell_lighting.comp) stores C_k, S_k per lighting sample in a frame (r0, T × r0) fixed
+//            to the cluster axis; here they are turned to the fragment's radial axis (angle ψr).
+//   shadow   004 eq. 12: τ = exp(−κ_shadow Σ_{outer layers} ᾱ) with ᾱ each outer sector's mean α.
+//   output   premultiplied: re already carries the coverage (planar tracer, 004 eq. 5), so the
+//            colour is lighting · re / re_norm · τ and the blend is (ONE, ONE_MINUS_SRC_ALPHA).
+//
+// shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
+// appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
+#ifndef COIF_SHADERS_GL_SHELL_SHADE_GLSL
+#define COIF_SHADERS_GL_SHELL_SHADE_GLSL
+
+#include "shaders/gl/sector_frame.glsl"
+
+struct ShellSector {
+    uvec4 id;      // nearest records, best first
+    vec4 weight;   // their weights (renormalised here over the first u_neighbours)
+    vec4 shadow;   // x: Σ of the mean α of the outer sectors at the same (i, k)
+};
+layout(std430, binding = 1) readonly buffer Sectors { ShellSector sectors[]; };
+
+uniform sampler2D u_records;       // record atlas (RGBA16F): per record 3 tiles of views × X texels + 1 border
+uniform int u_tiles_per_row;
+uniform vec2 u_atlas_inv_size;
+uniform int u_views;
+uniform int u_hrir_length;
+uniform sampler2D u_lighting;      // C_k, S_k per lighting sample: x = row along t, y = cluster · 7 + texel
+uniform int u_lighting_rows;
+uniform int u_lighting_height;
+uniform int u_s_t;
+uniform int u_s_u;
+uniform int u_layers;
+uniform int u_layer;
+uniform int u_neighbours;
+uniform float u_kappa_shadow;
+uniform float u_re_scale;          // 1 / re_norm
+uniform vec3 u_eye;
+uniform int u_debug;               // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re)
+
+const float TWO_PI = 6.28318530718;
+
+vec4 atlas_fetch(uint tile, vec2 p) {
+    uint tx = tile % uint(u_tiles_per_row);
+    uint ty = tile / uint(u_tiles_per_row);
+    vec2 origin = vec2(float(tx) * float(u_hrir_length + 2), float(ty) * float(u_views + 2)) + 1.0;
+    return textureLod(u_records, (origin + p) * u_atlas_inv_size, 0.0);
+}
+
+// α and the 9 re coefficients of one sector at atlas position p, as three vec4:
+// t0 = (α, a0, a1, b1), t1 = (a2, b2, a3, b3), t2 = (a4, b4, 0, 0). No arrays: llvmpipe spills them.
+void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
+    ShellSector s = sectors[sector];
+    t0 = vec4(0.0);
+    t1 = vec4(0.0);
+    t2 = vec4(0.0);
+    float wsum = 0.0;
+    for (int n = 0; n < u_neighbours; ++n) {
+        float w = s.weight[n];
+        uint base = s.id[n] * 3u;
+        t0 += w * atlas_fetch(base, p);
+        t1 += w * atlas_fetch(base + 1u, p);
+        t2 += w * atlas_fetch(base + 2u, p);
+        wsum += w;
+    }
+    float inv = wsum > 0.0 ? 1.0 / wsum : 0.0;
+    t0 *= inv;
+    t1 *= inv;
+    t2 *= inv;
+}
+
+vec4 lighting_fetch(float lx, float ly0, int m) {
+    return textureLod(u_lighting, vec2(lx, (ly0 + float(m)) / float(u_lighting_height)), 0.0);
+}
+
+vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info) {
+    vec3 T = normalize(tangent);
+    vec3 r = sector_radial(normalize(normal), T);
+    vec3 V = normalize(u_eye - position);
+    float theta_v = sector_azimuth(V, T, r);
+
+    // HSV (i, j, k) and the position inside it.
+    float tt = clamp(texcoord.y, 0.0, 1.0) * float(u_s_t);
+    int i = min(int(tt), u_s_t - 1);
+    float gamma = tt - float(i);
+    float uu = fract(texcoord.x) * float(u_s_u);
+    int k = min(int(uu), u_s_u - 1);
+    float x = uu - float(k);
+    uint base = info.x;
+    uint top = base + uint((i * u_layers + u_layer) * u_s_u + k);
+    uint bottom = top + uint(u_layers * u_s_u);
+
+    float view = theta_v / TWO_PI * float(u_views);
+    view = mod(view, float(u_views));
+    vec2 p = vec2(x * float(u_hrir_length), view + 0.5);
+    vec4 top0, top1, top2, bot0, bot1, bot2;
+    sector_values(top, p, top0, top1, top2);
+    sector_values(bottom, p, bot0, bot1, bot2);
+    vec4 t0 = mix(top0, bot0, gamma);
+    vec4 t1 = mix(top1, bot1, gamma);
+    vec2 t2 = mix(top2.xy, bot2.xy, gamma);
+    float alpha = clamp(t0.x, 0.0, 1.0);
+    float tau = exp(-u_kappa_shadow * mix(sectors[top].shadow.x, sectors[bottom].shadow.x, gamma));
+
+    if (u_debug == 1) return vec4(vec3(alpha), alpha);
+    if (u_debug == 2) return vec4(vec3(max(t0.y, 0.0) * u_re_scale * tau), alpha);
+
+    // Lighting coefficients at this t (linear between lighting rows), turned to this fragment's r.
+    // Texels: L0 = (C0.rgb, C1.r), L1 = (C1.gb, S1.rg), L2 = (S1.b, C2.rgb), L3 = (S2.rgb, C3.r),
+    //         L4 = (C3.gb, S3.rg), L5 = (S3.b, C4.rgb), L6 = (S4.rgb, 0).
+    float lx = (clamp(texcoord.y, 0.0, 1.0) * float(u_lighting_rows - 1) + 0.5) / float(u_lighting_rows);
+    float ly0 = float(info.y * 7u) + 0.5;
+    vec4 L0 = lighting_fetch(lx, ly0, 0);
+    vec4 L1 = lighting_fetch(lx, ly0, 1);
+    vec4 L2 = lighting_fetch(lx, ly0, 2);
+    vec4 L3 = lighting_fetch(lx, ly0, 3);
+    vec4 L4 = lighting_fetch(lx, ly0, 4);
+    vec4 L5 = lighting_fetch(lx, ly0, 5);
+    vec4 L6 = lighting_fetch(lx, ly0, 6);
+    vec3 C0 = L0.xyz;
+    if (u_debug == 3) return vec4(C0 * alpha * tau, alpha);
+    vec3 C1 = vec3(L0.w, L1.xy), S1 = vec3(L1.zw, L2.x);
+    vec3 C2 = L2.yzw, S2 = L3.xyz;
+    vec3 C3 = vec3(L3.w, L4.xy), S3 = vec3(L4.zw, L5.x);
+    vec3 C4 = L5.yzw, S4 = L6.xyz;
+    vec3 r0 = axis_normal - dot(axis_normal, T) * T;
+    float psi_r = sector_azimuth(r, T, normalize(r0));
+    // Σ_j w_j cos h(ψj − ψr) = C_h cos hψr + S_h sin hψr;  Σ_j w_j sin h(ψj − ψr) = S_h cos hψr − C_h sin hψr.
+    vec2 e1 = vec2(cos(psi_r), sin(psi_r));
+    vec2 e2 = vec2(e1.x * e1.x - e1.y * e1.y, 2.0 * e1.x * e1.y);
+    vec2 e3 = vec2(e2.x * e1.x - e2.y * e1.y, e2.x * e1.y + e2.y * e1.x);
+    vec2 e4 = vec2(e2.x * e2.x - e2.y * e2.y, 2.0 * e2.x * e2.y);
+    vec3 sum = t0.y * C0;
+    sum += t0.z * (C1 * e1.x + S1 * e1.y) + t0.w * (S1 * e1.x - C1 * e1.y);
+    sum += t1.x * (C2 * e2.x + S2 * e2.y) + t1.y * (S2 * e2.x - C2 * e2.y);
+    sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
+    sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
+    return vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);
+}
+
+#endif  // COIF_SHADERS_GL_SHELL_SHADE_GLSL
