@@ -94,6 +94,9 @@ struct ShellRenderer::Impl {
     std::size_t sample_count = 0;
     int light_count = 0;
     Query query_lighting, query_shells;
+    // Exact compositing (Compositing::exact, capture_fragments): made on first use.
+    std::unique_ptr<Program> abuffer;
+    std::unique_ptr<FragmentLists> lists;
     // The dual-scattering tables of the last parameter set.
     std::vector<GpuSample> cpu_samples;
     bool have_ms = false;
@@ -541,8 +544,13 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     }
 
     // ---- shells ------------------------------------------------------------------------------------
+    const bool exact = !floor_only && s.compositing == Compositing::exact;
+    if (exact && !m.abuffer) {
+        m.abuffer = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell.vert", "shaders/gl/shell_abuffer.frag"});
+        m.lists = std::make_unique<FragmentLists>();
+    }
     glBeginQuery(GL_TIME_ELAPSED, m.query_shells.id());
-    const Program& prog = floor_only ? m.floor : m.shade;
+    const Program& prog = floor_only ? m.floor : exact ? *m.abuffer : m.shade;
     prog.use();
     const glm::mat4 vp = camera.projection() * camera.view();
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
@@ -570,15 +578,23 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m.sectors.id());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over" (004 eq. 14)
+    GLint target_framebuffer = 0;
+    if (exact) {  // append every fragment to its pixel's list; no blending, no colour output
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
+        m.lists->begin(camera.width, camera.height);
+        glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(m.lists->stats().capacity));
+        glDisable(GL_BLEND);
+    } else {
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over" (004 eq. 14)
+    }
     glEnable(GL_CULL_FACE);
     glFrontFace(GL_CCW);
     glBindVertexArray(m.vao.id());
 
     std::vector<std::size_t> order(m.cluster_proto.size());
     std::iota(order.begin(), order.end(), 0);
-    if (s.sort_clusters) {
+    if (s.compositing == Compositing::sorted) {
         std::vector<float> dist(order.size());
         for (std::size_t c = 0; c < order.size(); ++c) dist[c] = glm::distance(camera.eye, m.cluster_centre[c]);
         std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
@@ -601,6 +617,12 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
+    if (exact) {  // the per-pixel sort and "over" of the lists, into the caller's framebuffer
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target_framebuffer));
+        glViewport(0, 0, camera.width, camera.height);
+        m.lists->resolve(s.background);
+    }
     glDepthMask(GL_TRUE);
     glEndQuery(GL_TIME_ELAPSED);
     if (s.timed) {
@@ -617,6 +639,14 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     }
     glGetQueryObjectui64v(m.query_shells.id(), GL_QUERY_RESULT, &ns);
     timings_.shells_ms = static_cast<double>(ns) * 1e-6;
+    if (exact) {
+        m.lists->finish();
+        if (m.lists->stats().dropped > 0)
+            std::fprintf(stderr, "coif: exact compositing dropped %llu of %llu fragments (storage for %llu); the next frame has more\n",
+                         static_cast<unsigned long long>(m.lists->stats().dropped),
+                         static_cast<unsigned long long>(m.lists->stats().fragments),
+                         static_cast<unsigned long long>(m.lists->stats().capacity));
+    }
 }
 
 std::vector<float> ShellRenderer::read_lighting() const {
@@ -655,6 +685,39 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     return target.read_back();
 }
 
+FragmentCapture ShellRenderer::capture_fragments(const Camera& camera, const ShellSettings& settings, Image* resolved) {
+    ShellSettings s = settings;
+    s.compositing = Compositing::exact;
+    s.samples = 1;
+    // An overflowing first try grows the storage to what it counted, so the second holds every
+    // fragment unless the GPU's storage-block limit is reached (then `dropped` says how many are missing).
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        Image image = render(camera, s);
+        if (resolved) *resolved = std::move(image);
+        if (impl_->lists->stats().dropped == 0) break;
+    }
+    return impl_->lists->read_back();
+}
+
+FragmentListStats ShellRenderer::fragment_list_stats() const {
+    return impl_->lists ? impl_->lists->stats() : FragmentListStats{};
+}
+
+const char* compositing_name(Compositing c) {
+    switch (c) {
+        case Compositing::sorted: return "sorted";
+        case Compositing::unsorted: return "unsorted";
+        case Compositing::exact: return "exact";
+    }
+    return "?";
+}
+
+Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place) {
+    for (Compositing c : {Compositing::sorted, Compositing::unsorted, Compositing::exact})
+        if (text == compositing_name(c)) return c;
+    throw Error(file, place, "'" + text + "' is not sorted, unsorted or exact");
+}
+
 // ---- parameters file -------------------------------------------------------------------------------
 
 ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
@@ -671,7 +734,7 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (!j.is_object()) throw Error(path, "JSON /", "expected an object of parameters");
     static const std::vector<std::string> known = {
         "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
-        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "sort_clusters",
+        "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "compositing",
         "shadows", "own_cluster_shadow", "kappa_between", "d_f"};
     for (const auto& [key, value] : j.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
@@ -735,9 +798,9 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
         if (*v < 0 || *v > 3 || *v != std::floor(*v)) throw Error(path, "JSON /debug", "must be 0, 1, 2 or 3");
         s.debug = static_cast<int>(*v);
     }
-    if (j.contains("sort_clusters")) {
-        if (!j["sort_clusters"].is_boolean()) throw Error(path, "JSON /sort_clusters", "expected true or false");
-        s.sort_clusters = j["sort_clusters"].get<bool>();
+    if (j.contains("compositing")) {
+        if (!j["compositing"].is_string()) throw Error(path, "JSON /compositing", "expected \"sorted\", \"unsorted\" or \"exact\"");
+        s.compositing = parse_compositing(j["compositing"].get<std::string>(), path, "JSON /compositing");
     }
     if (j.contains("own_cluster_shadow")) {
         if (!j["own_cluster_shadow"].is_boolean()) throw Error(path, "JSON /own_cluster_shadow", "expected true or false");

@@ -15,9 +15,14 @@
 //     the 9 Fourier coefficients of re in θl), so x and θv are interpolated by the bilinear fetch;
 //   - lighting samples along each cluster's axis (position, tangent, frame normal).
 // Per frame: a compute pass evaluates the SRBF lighting per lighting sample and light and folds it
-// into the 9 Fourier sums of DESIGN.md decision 1 (shaders/gl/shell_lighting.comp); clusters are
-// sorted back to front by the depth of their centre; each cluster draws its layers' back faces
-// outer → inner, then front faces inner → outer (the transparent core shows what lies behind).
+// into the 9 Fourier sums of DESIGN.md decision 1 (shaders/gl/shell_lighting.comp); then the shells
+// are composited (004 eq. 14) as ShellSettings::compositing says (decision 4, docs/renderer.md):
+//   sorted    (default) clusters back to front by the distance of their centre; each cluster draws its
+//             layers' back faces outer → inner, then front faces inner → outer (the transparent core
+//             shows what lies behind), blended "over" in that order;
+//   unsorted  the same without the cluster sort (style order), for error figures;
+//   exact     every fragment appended to per-pixel lists (online/fragment_lists.h), sorted per pixel
+//             and composited by a full-screen pass.
 // Nothing per frame runs on the CPU beyond the sort and the draw calls.
 //
 // Shadows between clusters (DESIGN.md decision 5): the style's strands (models/style_strands.h)
@@ -29,7 +34,7 @@
 // Painted absorption: an optional σa per cluster and lighting row (models/absorption_map.h) in a texture
 // that the lighting pass reads instead of the settings' σa.
 //
-// Not yet: per-pixel order within interpenetrating clusters, AOVs.
+// Not yet: AOVs.
 //
 // Conventions: world is y-up centimetres after `orientation` (the style's hang axis turned to −y,
 // as the strand preview does); light directions point towards the light; the camera is coif::Camera.
@@ -45,12 +50,19 @@
 #include "models/core/image.h"
 #include "models/hair_style.h"
 #include "offline/srbf_lights.h"
+#include "online/fragment_lists.h"
 #include "online/gl.h"
 #include "shaders/lighting.h"
 
 namespace coif::gl {
 
 inline constexpr int kMaxShellNeighbours = 4;  // records per sector kept for the GPU
+
+// How the shells are composited (see the header comment; docs/renderer.md decision 4).
+enum class Compositing { sorted, unsorted, exact };
+const char* compositing_name(Compositing c);
+// "sorted" | "unsorted" | "exact"; anything else throws coif::Error(file, place, …).
+Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place);
 
 struct ShellSettings {
     shading::HairParams hair = shading::default_hair_params();
@@ -65,7 +77,7 @@ struct ShellSettings {
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
     int samples = 4;                // MSAA samples of the offscreen target
-    bool sort_clusters = true;      // back-to-front order of clusters (off: style order, for error figures)
+    Compositing compositing = Compositing::sorted;
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re)
     bool timed = false;             // glFinish around each pass and wall-clock timings (benchmarks; see ShellTimings)
 };
@@ -73,8 +85,8 @@ struct ShellSettings {
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
-//    "debug": 0..3 (ShellSettings::debug), "sort_clusters", "shadows": true, "own_cluster_shadow": true,
-//    "kappa_between", "d_f"}
+//    "debug": 0..3 (ShellSettings::debug), "compositing": "exact" | "sorted" | "unsorted", "shadows": true,
+//    "own_cluster_shadow": true, "kappa_between", "d_f"}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
@@ -121,6 +133,12 @@ public:
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);
     // Renders into an offscreen target of the camera's size and returns the linear RGBA image.
     Image render(const Camera& camera, const ShellSettings& settings);
+    // Every shell fragment of this view (the exact compositing's lists, single sample; `settings`'
+    // compositing and samples are ignored), drawn again with more storage if the first try overflowed.
+    // `resolved`, if given, receives the GPU resolve of the same lists (Compositing::exact at 1 sample).
+    FragmentCapture capture_fragments(const Camera& camera, const ShellSettings& settings, Image* resolved = nullptr);
+    // The fragment lists' figures of the last draw with Compositing::exact (zero before any).
+    FragmentListStats fragment_list_stats() const;
 
     const ShellStats& stats() const { return stats_; }
     // The lighting pass's output of the last draw: per cluster, per lighting row, the 27 sums

@@ -24,7 +24,7 @@ namespace {
 struct RenderOptions {
     coif::cli::SceneOptions scene;
     std::string output = "coif.png";
-    std::string db, env, params, absorption;
+    std::string db, env, params, absorption, compositing;
     float exposure = 0.0f;
     bool preview = false;
     int samples = 4;
@@ -59,6 +59,10 @@ void add_render(CLI::App& root) {
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))->capture_default_str();
     render->add_option("--samples", o->samples, "MSAA samples per pixel")->check(CLI::Range(1, 16))->capture_default_str();
+    render->add_option("--compositing", o->compositing,
+                       "sorted (clusters back to front, the default), unsorted, or exact (per-pixel fragment lists "
+                       "sorted on the GPU); overrides the --params key")
+        ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
     render->add_flag("--preview-strands", o->preview, "Draw the strands as GL lines (Kajiya-Kay preview), not the SATF renderer");
     coif::cli::examples(render, "  coif render -o hair.png\n"
@@ -92,6 +96,7 @@ void add_render(CLI::App& root) {
         coif::gl::ShellSettings settings;
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
+        if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
         std::string lights_label;
         const std::vector<coif::SrbfLight> lights = coif::cli::load_render_lights(o->env, &lights_label);
         const coif::HairStyle style = coif::cli::load_style(o->scene.style);
@@ -130,6 +135,12 @@ void add_render(CLI::App& root) {
                          "samples x lights: mean unoccluded fraction %.3f, mean fibres met %.2f\n",
                          st.grid_x, st.grid_y, st.grid_z, st.voxel, st.shadow_strands, renderer.timings().shadows_ms,
                          sh.size(), direct / n, fibres / n);
+        }
+        if (settings.compositing == coif::gl::Compositing::exact) {
+            const coif::gl::FragmentListStats fl = renderer.fragment_list_stats();
+            std::fprintf(stderr, "exact compositing: %llu fragments (%llu dropped), %llu pixels over the resolve's %d, resolve %.1f ms\n",
+                         static_cast<unsigned long long>(fl.fragments), static_cast<unsigned long long>(fl.dropped),
+                         static_cast<unsigned long long>(fl.pixels_over_resolve_limit), coif::gl::kResolveFragments, fl.resolve_ms);
         }
     });
 }
