@@ -14,38 +14,14 @@
 #include "online/shell_renderer.h"
 #include "shaders/lighting.h"
 #include "tests/common/run.h"
+#include "tests/online/shell_test_scene.h"
 
 namespace coif {
 namespace {
 
-// A small database built once for the whole file (40 sectors: ~3 s on 2 cores). The renderer's
-// behaviour, not the look-up's quality, is under test here.
-const HrirDatabase& test_db() {
-    static const HrirDatabase db = [] {
-        const auto path = std::filesystem::temp_directory_path() / ("coif-shell-test-" + std::to_string(::getpid()) + ".db");
-        BuildOptions b;
-        b.params.sectors = 40;
-        b.threads = 2;
-        build_database(b, path);
-        HrirDatabase d = HrirDatabase::open(path);
-        std::filesystem::remove(path);  // the mapping stays valid; nothing is left in the temp folder
-        return d;
-    }();
-    return db;
-}
-const SatfIndex& test_index() {
-    static const SatfIndex index(test_db(), SatfOptions{});
-    return index;
-}
-
-// One straight cluster hanging along −y, 10 cm long, radius 1 cm, uniform density.
-HairStyle one_cluster_style() {
-    const char* text = R"({"format": "coif-style", "version": 1,
-      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
-      "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [1.0],
-                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}}]})";
-    return parse_style(text, "<test style>");
-}
+using test::one_cluster_style;
+using test::test_index;
+using test::two_lights;
 
 Camera front_camera(const gl::ShellRenderer& r, int w = 96, int h = 64) {
     return Camera::orbit(r.bounds_min(), r.bounds_max(), 0.3f, 0.2f, w, h);
@@ -239,17 +215,6 @@ TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {
     EXPECT_EQ(renderer.read_lighting(), plain);
     AbsorptionMap wrong(3, 2, glm::vec3(0.5f));
     EXPECT_THROW(renderer.set_absorption(&wrong), Error);
-}
-
-std::vector<SrbfLight> two_lights() {
-    SrbfLight a, b;
-    a.L = glm::vec3(2.0f, 1.8f, 1.5f);
-    a.omega = glm::normalize(glm::vec3(0.2f, 0.8f, 0.6f));
-    a.lambda = 0.3f;
-    b.L = glm::vec3(0.3f, 0.4f, 0.6f);
-    b.omega = glm::normalize(glm::vec3(-0.5f, 0.3f, -0.4f));
-    b.lambda = 1.0f;
-    return {a, b};
 }
 
 double mean_abs_difference(const Image& a, const Image& b) {

@@ -1,0 +1,56 @@
+#pragma once
+// What the shell renderer's tests share: a small database built once per test binary, its SATF index,
+// a one-cluster style and two lights.
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "db/hrir_db.h"
+#include "db/satf.h"
+#include "models/hair_style.h"
+#include "offline/srbf_lights.h"
+
+namespace coif::test {
+
+// A small database built once per test binary (40 sectors: ~3 s on 2 cores). The renderer's
+// behaviour, not the look-up's quality, is under test here.
+inline const HrirDatabase& test_db() {
+    static const HrirDatabase db = [] {
+        const auto path = std::filesystem::temp_directory_path() / ("coif-shell-test-" + std::to_string(::getpid()) + ".db");
+        BuildOptions b;
+        b.params.sectors = 40;
+        b.threads = 2;
+        build_database(b, path);
+        HrirDatabase d = HrirDatabase::open(path);
+        std::filesystem::remove(path);  // the mapping stays valid; nothing is left in the temp folder
+        return d;
+    }();
+    return db;
+}
+inline const SatfIndex& test_index() {
+    static const SatfIndex index(test_db(), SatfOptions{});
+    return index;
+}
+
+// One straight cluster hanging along −y, 10 cm long, radius 1 cm, uniform density.
+inline HairStyle one_cluster_style() {
+    const char* text = R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}}]})";
+    return parse_style(text, "<test style>");
+}
+
+inline std::vector<SrbfLight> two_lights() {
+    SrbfLight a, b;
+    a.L = glm::vec3(2.0f, 1.8f, 1.5f);
+    a.omega = glm::normalize(glm::vec3(0.2f, 0.8f, 0.6f));
+    a.lambda = 0.3f;
+    b.L = glm::vec3(0.3f, 0.4f, 0.6f);
+    b.omega = glm::normalize(glm::vec3(-0.5f, 0.3f, -0.4f));
+    b.lambda = 1.0f;
+    return {a, b};
+}
+
+}  // namespace coif::test

@@ -1,0 +1,150 @@
+// Compositing of the shell renderer (004 eq. 14, DESIGN.md decision 4) against the exact CPU
+// compositing of the same fragments (online/fragment_lists.h): every fragment of the view captured in
+// per-pixel lists, sorted by eye distance and blended "over" back to front in double precision.
+// PSNR on linear RGB over the pixels with a fragment, peak = the reference's 99th percentile.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "models/core/error.h"
+#include "online/fragment_lists.h"
+#include "online/gl_context.h"
+#include "online/shell_renderer.h"
+#include "tests/common/run.h"
+#include "tests/online/shell_test_scene.h"
+
+namespace coif {
+namespace {
+
+using test::test_index;
+using test::two_lights;
+
+// Three clusters that cross: c1 leans through c0, c2 hangs behind both and its tip comes forward past
+// them, so no order of whole clusters is right for every pixel.
+HairStyle crossing_style() {
+    const char* text = R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [
+        {"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [1.0],
+         "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}},
+        {"name": "c1", "trajectory": [[-3, -1, 0.3], [0, -5, 0], [3, -9, -0.3]], "a": [0.8], "b": [0.8],
+         "theta_deg": [0], "density": {"kind": "uniform", "value": 0.6}},
+        {"name": "c2", "trajectory": [[0.5, 0, -1.5], [0.5, -5, -1.0], [0.5, -10, 1.5]], "a": [1.0], "b": [0.7],
+         "theta_deg": [0], "density": {"kind": "uniform", "value": 0.4}}]})";
+    return parse_style(text, "<crossing style>");
+}
+
+struct Scene {
+    std::unique_ptr<gl::Context> context = gl::Context::headless();
+    gl::ShellRenderer renderer;
+    Camera camera;
+    explicit Scene(const HairStyle& style) : renderer(style, test_index(), glm::mat3(1.0f)) {
+        renderer.set_lights(two_lights());
+        camera = Camera::orbit(renderer.bounds_min(), renderer.bounds_max(), 0.5f, 0.2f, 120, 96);
+    }
+    // The exact CPU composite of this view's fragments, and `mode`'s image against it (1 sample).
+    gl::CompositingError error(gl::Compositing mode, gl::FragmentDepthStats* depth = nullptr) {
+        gl::ShellSettings s;
+        s.samples = 1;
+        s.compositing = mode;
+        Image gpu_exact;
+        const gl::FragmentCapture capture = renderer.capture_fragments(camera, s, &gpu_exact);
+        EXPECT_EQ(capture.dropped, 0u);
+        if (depth) *depth = gl::fragment_depth_stats(capture);
+        const Image exact = gl::composite_exact(capture, s.background);
+        // The exact mode's image from the same lists as the reference; the others drawn anew.
+        return gl::compositing_error(exact, mode == gl::Compositing::exact ? gpu_exact : renderer.render(camera, s), capture);
+    }
+};
+
+TEST(ShellCompositing, ExactModeMatchesTheCpuCompositeOfTheSameFragments) {
+    Scene scene(crossing_style());
+    gl::FragmentDepthStats depth;
+    const gl::CompositingError e = scene.error(gl::Compositing::exact, &depth);
+    std::printf("%llu fragments on %zu hair pixels (mean %.1f, max %zu); GPU exact vs CPU exact: PSNR hair %.1f dB, "
+                "all %.1f dB, max |d| %.2g\n",
+                static_cast<unsigned long long>(depth.fragments), depth.covered_pixels, depth.mean_covered, depth.max,
+                e.psnr_hair_db, e.psnr_all_db, e.max_abs);
+    ASSERT_GT(depth.covered_pixels, 1000u);                                     // the clusters fill the view
+    ASSERT_LE(depth.max, static_cast<std::size_t>(gl::kResolveFragments));  // every fragment sorted
+    // Same fragments, same order: the GPU composites in float and rounds once to the RGBA16F target
+    // (2^-11 relative; pixel values here ≤ 0.3, so ≤ 1.5e-4), the CPU in double. Measured 1.2e-4
+    // (71.5 dB); bound 1e-3 and 60 dB.
+    EXPECT_LT(e.max_abs, 1e-3);
+    EXPECT_GT(e.psnr_hair_db, 60.0);
+}
+
+TEST(ShellCompositing, SortedClustersAgainstTheCpuComposite) {
+    {
+        // One straight cluster: back faces outer → inner, then front faces inner → outer is the exact
+        // per-pixel order, so only the RGBA16F rounding of each blend step (≤ 24 steps of 2^-12 of
+        // values ≤ 0.3) remains. Measured 70.4 dB; bound 60 dB.
+        Scene scene(test::one_cluster_style());
+        const gl::CompositingError e = scene.error(gl::Compositing::sorted);
+        std::printf("one cluster: sorted vs CPU exact PSNR hair %.1f dB, max |d| %.2g\n", e.psnr_hair_db, e.max_abs);
+        EXPECT_GT(e.psnr_hair_db, 60.0);
+    }
+    {
+        // Crossing clusters: one order per cluster (by centre distance) is wrong wherever they
+        // interpenetrate. Measured: sorted 20.3 dB, unsorted 22.2 dB — the order of whole clusters is
+        // no better than none here (the default scene: 19.3 dB against 19.2; docs/renderer.md decision 4).
+        // Bound 15 dB: this scene's figure less 5 dB for look-up and driver changes; far below the
+        // exact mode's 60 dB, which is why the exact mode exists.
+        Scene scene(crossing_style());
+        const gl::CompositingError sorted = scene.error(gl::Compositing::sorted);
+        const gl::CompositingError unsorted = scene.error(gl::Compositing::unsorted);
+        std::printf("crossing clusters: sorted PSNR hair %.1f dB (RMS %.3g), unsorted %.1f dB (RMS %.3g)\n",
+                    sorted.psnr_hair_db, sorted.rms_hair, unsorted.psnr_hair_db, unsorted.rms_hair);
+        EXPECT_GT(sorted.psnr_hair_db, 15.0);
+        EXPECT_LT(sorted.psnr_hair_db, 40.0) << "the crossing scene no longer tests interpenetrating clusters";
+    }
+}
+
+TEST(ShellCompositing, OverflowingStorageIsCountedAndTheNextFrameIsComplete) {
+    // The first frame reserves kInitialNodesPerPixel (8) nodes per pixel. A narrow view of where the
+    // clusters cross sees up to 3 clusters × 4 layers × 2 faces per pixel, more than 8 on average: the
+    // first frame overflows, counts what it could not store, and the next frame holds everything.
+    Scene scene(crossing_style());
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.compositing = gl::Compositing::exact;
+    const Camera small = Camera::orbit(glm::vec3(-0.3f, -5.3f, -0.3f), glm::vec3(0.3f, -4.7f, 0.3f), 0.5f, 0.2f, 8, 6);
+    const Image first = scene.renderer.render(small, s);
+    const gl::FragmentListStats a = scene.renderer.fragment_list_stats();
+    const Image second = scene.renderer.render(small, s);
+    const gl::FragmentListStats b = scene.renderer.fragment_list_stats();
+    std::printf("8x6 close view: %llu fragments, first frame dropped %llu (capacity %llu), second dropped %llu (capacity %llu)\n",
+                static_cast<unsigned long long>(a.fragments), static_cast<unsigned long long>(a.dropped),
+                static_cast<unsigned long long>(a.capacity), static_cast<unsigned long long>(b.dropped),
+                static_cast<unsigned long long>(b.capacity));
+    EXPECT_GT(a.dropped, 0u) << "the view no longer overflows the first frame's storage";
+    EXPECT_EQ(a.fragments, b.fragments);
+    EXPECT_EQ(b.dropped, 0u);
+    for (float v : second.pixels) ASSERT_TRUE(std::isfinite(v));
+    (void)first;
+}
+
+TEST(ShellCompositing, ParametersFileSelectsTheMode) {
+    const auto dir = test::scratch_dir("shell-compositing-params");
+    const auto write = [&](const char* name, const char* text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    };
+    EXPECT_EQ(gl::read_shell_settings(write("a.json", R"({"compositing": "unsorted"})")).compositing, gl::Compositing::unsorted);
+    EXPECT_EQ(gl::read_shell_settings(write("b.json", R"({"compositing": "sorted"})")).compositing, gl::Compositing::sorted);
+    EXPECT_EQ(gl::read_shell_settings(write("c.json", R"({"compositing": "exact"})")).compositing, gl::Compositing::exact);
+    try {
+        gl::read_shell_settings(write("d.json", R"({"compositing": "peeled"})"));
+        FAIL() << "unknown compositing mode accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("JSON /compositing"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(gl::read_shell_settings(write("e.json", R"({"compositing": true})")), Error);
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace coif
