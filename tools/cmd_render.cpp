@@ -60,8 +60,8 @@ void add_render(CLI::App& root) {
         ->check(CLI::Range(0, 64))->capture_default_str();
     render->add_option("--samples", o->samples, "MSAA samples per pixel")->check(CLI::Range(1, 16))->capture_default_str();
     render->add_option("--compositing", o->compositing,
-                       "sorted (clusters back to front, the default), unsorted, or exact (per-pixel fragment lists "
-                       "sorted on the GPU); overrides the --params key")
+                       "exact (per-pixel fragment lists sorted on the GPU, 1 sample: the default), sorted (clusters "
+                       "back to front, blended; MSAA applies), or unsorted; overrides the --params key")
         ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
     render->add_flag("--preview-strands", o->preview, "Draw the strands as GL lines (Kajiya-Kay preview), not the SATF renderer");
