@@ -795,7 +795,7 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
         s.d_f = *v;
     }
     if (auto v = number("debug")) {
-        if (*v < 0 || *v > 3 || *v != std::floor(*v)) throw Error(path, "JSON /debug", "must be 0, 1, 2 or 3");
+        if (*v < 0 || *v > 4 || *v != std::floor(*v)) throw Error(path, "JSON /debug", "must be 0, 1, 2, 3 or 4");
         s.debug = static_cast<int>(*v);
     }
     if (j.contains("compositing")) {

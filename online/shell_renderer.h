@@ -79,14 +79,14 @@ struct ShellSettings {
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
     int samples = 4;                // MSAA samples of the offscreen target (the exact compositing is 1 sample)
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
-    int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re)
+    int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re), 4 shadow AOV
     bool timed = false;             // glFinish around each pass and wall-clock timings (benchmarks; see ShellTimings)
 };
 // Reads a parameters file (JSON object; every key optional; degrees for angles):
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
-//    "debug": 0..3 (ShellSettings::debug), "compositing": "exact" | "sorted" | "unsorted", "shadows": true,
+//    "debug": 0..4 (ShellSettings::debug), "compositing": "exact" | "sorted" | "unsorted", "shadows": true,
 //    "own_cluster_shadow": true, "kappa_between", "d_f"}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.

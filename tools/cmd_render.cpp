@@ -27,6 +27,7 @@ struct RenderOptions {
     std::string db, env, params, absorption, compositing;
     float exposure = 0.0f;
     bool preview = false;
+    bool aovs = false;
     int samples = 4;
     int lighting_rows = 0;
 };
@@ -64,11 +65,16 @@ void add_render(CLI::App& root) {
                        "back to front, blended; MSAA applies), or unsorted; overrides the --params key")
         ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
+    render->add_flag("--aovs", o->aovs,
+                     "Also write the separate images OUT.R, OUT.TT, OUT.TRT, OUT.multiple (each scattering term alone, over "
+                     "black: they add up to the image over black) and OUT.shadow (the unoccluded fraction of the light "
+                     "times the within-cluster shadow, as coverage-weighted grey)");
     render->add_flag("--preview-strands", o->preview, "Draw the strands as GL lines (Kajiya-Kay preview), not the SATF renderer");
     coif::cli::examples(render, "  coif render -o hair.png\n"
                                 "  coif render --db db4k.db --env ../shared/data/blender_studiolight_city.exr --azimuth 90 -o side.exr\n"
                                 "  coif render --params red.json --width 1920 --height 1080 -o hd.png\n"
                                 "  coif render --absorption dyed.exr -o dyed.png   # from coif style paint-absorption\n"
+                                "  coif render --aovs -o hair.exr   # also hair.R.exr, hair.TT.exr, hair.TRT.exr, hair.multiple.exr, hair.shadow.exr\n"
                                 "  coif render --preview-strands --strands ../shared/data/harolongo.data -o lines.png");
     render->callback([o] {
         {  // refuse a bad output name before any work (the default database may take minutes to build)
@@ -122,6 +128,29 @@ void add_render(CLI::App& root) {
                      renderer.timings().lighting_ms + renderer.timings().shells_ms, renderer.timings().lighting_ms,
                      renderer.timings().shells_ms, st.prepare_seconds, o->output.c_str());
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d\n", st.re_norm, st.atlas_width, st.atlas_height);
+        if (o->aovs) {
+            const std::filesystem::path out(o->output);
+            struct Aov {
+                const char* name;
+                int lobes;
+                bool multiple;
+                int debug;
+            };
+            for (const Aov& a : {Aov{"R", 1, false, 0}, Aov{"TT", 2, false, 0}, Aov{"TRT", 4, false, 0},
+                                 Aov{"multiple", 0, true, 0}, Aov{"shadow", 7, settings.multiple, 4}}) {
+                coif::gl::ShellSettings aov = settings;
+                aov.background = glm::vec3(0.0f);
+                aov.lobes = a.lobes;
+                aov.multiple = a.multiple;
+                aov.debug = a.debug;
+                const std::filesystem::path path =
+                    out.parent_path() / (out.stem().string() + "." + a.name + out.extension().string());
+                coif::WriteOptions aw = wo;
+                aw.description = wo.description + "; AOV " + a.name;
+                coif::write_image(path, renderer.render(camera, aov), aw);
+                std::fprintf(stderr, "AOV %-8s -> %s\n", a.name, path.c_str());
+            }
+        }
         if (settings.shadows) {
             double direct = 0, fibres = 0;
             const std::vector<glm::vec2> sh = renderer.read_shadows();

@@ -7,7 +7,8 @@
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
-// 27 floats in 7 RGBA32F texels per sample: texel (row, cluster · 7 + m).
+// 27 floats in 7 RGBA32F texels per sample: texel (row, cluster · 7 + m); the 28th float is the
+// sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV).
 #include "shaders/lighting/luts_gl.glsl"
 #include "shaders/lighting/srbf_shadowed.glsl"
 #include "shaders/gl/sector_frame.glsl"
@@ -62,6 +63,8 @@ void main() {
     vec3 C[5];
     vec3 S[5];
     for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
+    float visible = 0.0;  // Σ_j lum(L_j) T̃_j and Σ_j lum(L_j): the sample's unoccluded fraction (shadow AOV)
+    float total = 0.0;
     for (int j = 0; j < u_light_count; ++j) {
         vec3 l = lights[j].direction_lambda.xyz;
         float lambda_j = lights[j].direction_lambda.w;
@@ -76,6 +79,9 @@ void main() {
             m += srbf_shadowed_multiple(hp, u_config, f0123, f45, u_d_f, theta_o, phi_o, theta_j, phi_j, lambda_j,
                                         sh.x, sh.y);
         vec3 wj = lights[j].radiance.rgb * m;
+        float lum = dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722));
+        visible += lum * sh.x;
+        total += lum;
         float psi = sector_azimuth(l, T, r0);
         float proj = length(l - dot(l, T) * T);
         float lp = lambda_j / max(proj, 1e-3);
@@ -93,7 +99,7 @@ void main() {
         v[o] = C[k].x; v[o + 1] = C[k].y; v[o + 2] = C[k].z;
         v[o + 3] = S[k].x; v[o + 4] = S[k].y; v[o + 5] = S[k].z;
     }
-    v[27] = 0.0;
+    v[27] = total > 0.0 ? visible / total : 1.0;
     for (int m = 0; m < 7; ++m)
         imageStore(u_out, ivec2(row, cluster * 7 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
 }

@@ -43,7 +43,8 @@ uniform int u_neighbours;
 uniform float u_kappa_shadow;
 uniform float u_re_scale;          // 1 / re_norm
 uniform vec3 u_eye;
-uniform int u_debug;               // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re)
+uniform int u_debug;               // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re),
+                                   // 4 shadow: the lighting's unoccluded fraction · τ · α (the shadow AOV)
 
 const float TWO_PI = 6.28318530718;
 
@@ -114,7 +115,8 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
 
     // Lighting coefficients at this t (linear between lighting rows), turned to this fragment's r.
     // Texels: L0 = (C0.rgb, C1.r), L1 = (C1.gb, S1.rg), L2 = (S1.b, C2.rgb), L3 = (S2.rgb, C3.r),
-    //         L4 = (C3.gb, S3.rg), L5 = (S3.b, C4.rgb), L6 = (S4.rgb, 0).
+    //         L4 = (C3.gb, S3.rg), L5 = (S3.b, C4.rgb), L6 = (S4.rgb, V) with V the sample's unoccluded
+    //         fraction of the light (Σ_j lum L_j T̃_j / Σ_j lum L_j).
     float lx = (clamp(texcoord.y, 0.0, 1.0) * float(u_lighting_rows - 1) + 0.5) / float(u_lighting_rows);
     float ly0 = float(info.y * 7u) + 0.5;
     vec4 L0 = lighting_fetch(lx, ly0, 0);
@@ -126,6 +128,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     vec4 L6 = lighting_fetch(lx, ly0, 6);
     vec3 C0 = L0.xyz;
     if (u_debug == 3) return vec4(C0 * alpha * tau, alpha);
+    if (u_debug == 4) return vec4(vec3(L6.w * tau * alpha), alpha);
     vec3 C1 = vec3(L0.w, L1.xy), S1 = vec3(L1.zw, L2.x);
     vec3 C2 = L2.yzw, S2 = L3.xyz;
     vec3 C3 = vec3(L3.w, L4.xy), S3 = vec3(L4.zw, L5.x);

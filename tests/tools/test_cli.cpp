@@ -104,6 +104,19 @@ TEST(Cli, PaintAbsorptionWritesAMapAndRefusesBadStrokes) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, RenderAovsWritesEveryTermBesideTheImage) {
+    const auto dir = test::scratch_dir("cli-aovs");
+    auto r = run_coif("render --aovs --width 64 --height 48 -o '" + (dir / "h.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"h.exr", "h.R.exr", "h.TT.exr", "h.TRT.exr", "h.multiple.exr", "h.shadow.exr"})
+        EXPECT_TRUE(fs::exists(dir / f)) << f;
+    EXPECT_EQ(read_image(dir / "h.R.exr").width, 64);
+    r = run_coif("render --aovs --width 64 --height 48 -o '" + (dir / "x.tiff").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 6) << "nothing more written";
+    fs::remove_all(dir);
+}
+
 TEST(Cli, ConvertDataToHairPreservesStrands) {
     COIF_SHARED_DATA(path, "Bangs_100.data");
     const auto dir = test::scratch_dir("cli-convert");
