@@ -2,7 +2,9 @@
 // The strand preview: every strand drawn as GL line segments with a simple tangent-based shading
 // (Kajiya-Kay diffuse + specular under one directional light). It is NOT coif's hair renderer (the
 // SATF shells lit by SRBF Marschner lighting); it exists so that strand files and fitted styles can
-// be looked at, and every image it makes says so in its metadata.
+// be looked at, and every image it makes says so in its metadata. Only `coif view` draws it now, because it is
+// cheap per frame; `coif render --strands` draws the lit strand renderer (online/strand_renderer.h), whose
+// SRBF lighting costs seconds a frame on llvmpipe.
 #include <glm/glm.hpp>
 
 #include "models/core/camera.h"

@@ -1,5 +1,6 @@
 // coif render — one image of the scene: the SATF shell renderer lit by SRBF Marschner lighting
-// (online/shell_renderer.h), or the strand preview with --preview-strands.
+// (online/shell_renderer.h), or, for --strands FILE and --preview-strands, the strands as GL lines lit by
+// the same SRBF Marschner lighting (online/strand_renderer.h).
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -13,7 +14,7 @@
 #include "offline/srbf_lights.h"
 #include "online/gl_context.h"
 #include "online/shell_renderer.h"
-#include "online/strand_preview.h"
+#include "online/strand_renderer.h"
 #include "tools/cli.h"
 #include "tools/render_scene.h"
 #include "tools/scene_options.h"
@@ -30,6 +31,8 @@ struct RenderOptions {
     bool aovs = false;
     int samples = 4;
     int lighting_rows = 0;
+    float radius = 0.0f;
+    bool per_fragment = false;
 };
 
 void add_render(CLI::App& root) {
@@ -42,7 +45,11 @@ void add_render(CLI::App& root) {
         "Marschner lighting (single + multiple scattering) of the environment's SRBF lights, with shadows between\n"
         "clusters. Rendering goes through EGL, so no window or display is needed. docs/renderer.md has the details.\n"
         "With no --db the default database (1000 sectors) is built once into ~/.cache/coif (about 2 minutes on 2 cores)\n"
-        "and reused. --preview-strands draws the strands as GL lines with a Kajiya-Kay preview instead.\n"
+        "and reused.\n"
+        "--strands FILE (and --preview-strands, for the style's strands) draws strands as GL lines instead, each line\n"
+        "lit by the same SRBF Marschner lighting, evaluated per strand point (--per-fragment: per fragment), no SATF, no\n"
+        "shadows (--env, --params, --samples, --radius and --per-fragment apply):\n"
+        "the renderer's lighting alone, to compare with `coif reference` (docs/quality.md).\n"
         "Output: .png (tone-mapped sRGB: exposure, clip, sRGB curve) or .exr (linear half float); written atomically.");
     o->scene.add_to(render);
     render->add_option("-o,--output", o->output, "Image to write (.png, .exr or .hdr)")->capture_default_str();
@@ -52,7 +59,8 @@ void add_render(CLI::App& root) {
                        "40 lights); default: the embedded courtyard lights");
     render->add_option("--params", o->params,
                        "Scattering parameters JSON (keys: eta, sigma_a, alpha_R_deg, beta_R_deg, …, kappa_shadow, lobes, "
-                       "multiple, neighbours; see online/shell_renderer.h); default: 000's brown hair");
+                       "multiple, neighbours; see online/shell_renderer.h); default: 000's brown hair. The strand lines read\n"
+                       "the hair parameters, segments, lobes and multiple only");
     render->add_option("--absorption", o->absorption,
                        "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
                        "--params' sigma_a");
@@ -69,13 +77,20 @@ void add_render(CLI::App& root) {
                      "Also write the separate images OUT.R, OUT.TT, OUT.TRT, OUT.multiple (each scattering term alone, over "
                      "black: they add up to the image over black) and OUT.shadow (the unoccluded fraction of the light "
                      "times the within-cluster shadow, as coverage-weighted grey)");
-    render->add_flag("--preview-strands", o->preview, "Draw the strands as GL lines (Kajiya-Kay preview), not the SATF renderer");
+    render->add_option("--radius", o->radius,
+                       "Strand lines: fibre radius in scene units, drawn as pixel coverage 2r/pixel (0 = the reference's auto "
+                       "radius, 1e-3 of the strands' bounding-box diagonal)")
+        ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
+    render->add_flag("--per-fragment", o->per_fragment,
+                     "Strand lines: evaluate the lighting at every fragment, not at the strand points (exact, ~50x slower)");
+    render->add_flag("--preview-strands", o->preview,
+                     "Draw the style's strands as lit GL lines (the strand renderer of --strands), not the SATF shells");
     coif::cli::examples(render, "  coif render -o hair.png\n"
                                 "  coif render --db db4k.db --env ../shared/data/blender_studiolight_city.exr --azimuth 90 -o side.exr\n"
                                 "  coif render --params red.json --width 1920 --height 1080 -o hd.png\n"
                                 "  coif render --absorption dyed.exr -o dyed.png   # from coif style paint-absorption\n"
                                 "  coif render --aovs -o hair.exr   # also hair.R.exr, hair.TT.exr, hair.TRT.exr, hair.multiple.exr, hair.shadow.exr\n"
-                                "  coif render --preview-strands --strands ../shared/data/harolongo.data -o lines.png");
+                                "  coif render --strands ../shared/data/harolongo.data --env lights.json -o lines.png");
     render->callback([o] {
         {  // refuse a bad output name before any work (the default database may take minutes to build)
             std::string ext = std::filesystem::path(o->output).extension().string();
@@ -86,16 +101,36 @@ void add_render(CLI::App& root) {
         coif::WriteOptions wo;
         wo.exposure = o->exposure;
         if (o->preview || !o->scene.strands.empty()) {
-            std::string label;
+            // Everything that can be refused is read before anything is rendered or written.
+            coif::gl::StrandSettings settings;
+            settings.samples = o->samples;
+            settings.fiber_radius = o->radius;
+            settings.per_fragment = o->per_fragment;
+            if (!o->params.empty()) {
+                const coif::gl::ShellSettings p = coif::gl::read_shell_settings(o->params);
+                settings.hair = p.hair;
+                settings.config = p.config;
+                settings.lobes = p.lobes;
+                settings.multiple = p.multiple;
+            }
+            std::string lights_label, label;
+            const std::vector<coif::SrbfLight> lights = coif::cli::load_render_lights(o->env, &lights_label);
             const coif::Strands strands = o->scene.load_strands(&label);
             const coif::Camera camera = o->scene.camera_for(strands);
             auto context = coif::gl::Context::headless();
-            const coif::Image image = coif::gl::render_strand_preview(strands, camera, {});
-            wo.description = std::string(coif::gl::kStrandPreviewLabel) + "; " + label;
+            coif::gl::StrandRenderer renderer(strands);
+            renderer.set_lights(lights);
+            const coif::Image image = renderer.render(camera, settings);
+            wo.description = std::string(coif::gl::kStrandRendererLabel) + "; fibre radius " +
+                             std::to_string(renderer.fiber_radius(settings)) + "; " + label + "; lights " + lights_label;
             coif::write_image(o->output, image, wo);
-            std::fprintf(stderr, "%s\nrendered %s (%zu strands) at %dx%d on %s -> %s\n", coif::gl::kStrandPreviewLabel,
-                         label.c_str(), strands.strand_count(), camera.width, camera.height, context->renderer().c_str(),
-                         o->output.c_str());
+            std::fprintf(stderr,
+                         "%s\nrendered %s (%zu strands, %zu segments, fibre radius %g) with %zu lights at %dx%d on %s in %.1f ms "
+                         "GPU (lighting %.1f, lines %.1f) -> %s\n",
+                         coif::gl::kStrandRendererLabel, label.c_str(), strands.strand_count(), renderer.segment_count(),
+                         double(renderer.fiber_radius(settings)), lights.size(), camera.width, camera.height,
+                         context->renderer().c_str(), renderer.timings().lighting_ms + renderer.timings().lines_ms,
+                         renderer.timings().lighting_ms, renderer.timings().lines_ms, o->output.c_str());
             return;
         }
         // Everything that can be refused is read before anything is rendered or written.

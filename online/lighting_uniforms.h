@@ -1,0 +1,47 @@
+#pragma once
+// The lighting module (shaders/lighting/, shaders/lighting.h) on the GL side, for every program that
+// evaluates the SRBF Marschner lighting: it includes shaders/lighting/luts_gl.glsl (the table samplers,
+// named as kLutUniformNames) and declares `uniform HairParams u_hair; uniform LightingConfig u_config;`.
+//   - LightingTextures: the global tables (shading::global_lighting_tables) and the dual-scattering tables
+//     of one hair parameter set as textures, rebuilt only when the parameters change;
+//   - set_lighting_uniforms: u_hair.* and u_config.*.
+// Written once for the strand renderer (online/strand_renderer.h); the shell renderer's lighting pass
+// sets the same uniforms and can adopt it.
+#include <array>
+
+#include "online/gl.h"
+#include "shaders/lighting.h"
+
+namespace coif::gl {
+
+// The sampler names of shaders/lighting/luts_gl.glsl, in shading::LutSet order.
+inline constexpr std::array<const char*, shading::kLutCount> kLutUniformNames = {
+    "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
+    "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma", "lut_ms_af"};
+
+// True when (a, ca) and (b, cb) give the same dual-scattering tables (every field they read).
+bool same_lighting_tables(const shading::HairParams& a, const shading::LightingConfig& ca, const shading::HairParams& b,
+                          const shading::LightingConfig& cb);
+
+class LightingTextures {
+public:
+    LightingTextures();  // the global tables; needs a current GL context
+
+    // Makes the dual-scattering tables those of (hair, config), building them only when they differ
+    // from the last call's (validates: coif::Error). Returns true when it built them.
+    bool update(const shading::HairParams& hair, const shading::LightingConfig& config);
+    // Binds table i to texture unit first_unit + i and the program's sampler of that name to it (the
+    // program must be in use).
+    void bind(const Program& program, int first_unit) const;
+
+private:
+    std::array<Texture, shading::kLutCount> luts_;
+    bool have_ms_ = false;
+    shading::HairParams hair_{};
+    shading::LightingConfig config_{};
+};
+
+// u_hair.* and u_config.* of the program in use.
+void set_lighting_uniforms(const Program& program, const shading::HairParams& hair, const shading::LightingConfig& config);
+
+}  // namespace coif::gl

@@ -1,0 +1,182 @@
+#include "online/strand_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "models/core/error.h"
+#include "offline/reference.h"
+
+namespace coif::gl {
+
+namespace {
+
+constexpr int kFirstLutUnit = 0;
+
+// std430 mirrors of the GLSL structs (shaders/gl/strand_lines.frag).
+struct Vertex {
+    glm::vec3 position, tangent;
+};
+struct GpuLight {
+    glm::vec4 direction_lambda, radiance;
+};
+
+}  // namespace
+
+StrandRenderer::StrandRenderer(const Strands& strands)
+    : lighting_({"shaders/gl/strand_lighting.comp"}), lines_({"shaders/gl/strand_lines.vert", "shaders/gl/strand_lines.frag"}) {
+    std::vector<Vertex> vertices(strands.points.size());
+    for (std::size_t s = 0; s < strands.strand_count(); ++s) {
+        const std::uint32_t b = strands.offsets[s], e = strands.offsets[s + 1];
+        for (std::uint32_t i = b; i < e; ++i) {
+            // The tangent root→tip: central difference inside the strand, one-sided at its ends.
+            const glm::vec3 prev = strands.points[i > b ? i - 1 : i], next = strands.points[i + 1 < e ? i + 1 : i];
+            const glm::vec3 d = next - prev;
+            vertices[i] = {strands.points[i], glm::length(d) > 0 ? glm::normalize(d) : glm::vec3(0, -1, 0)};
+            if (i + 1 < e) {
+                segment_first_.push_back(i);
+                midpoints_.push_back(0.5f * (strands.points[i] + strands.points[i + 1]));
+            }
+        }
+    }
+    if (midpoints_.empty()) throw Error::parameter("strands", "no segments to draw");
+    auto_radius_ = coif::auto_fiber_radius(strands);
+    order_.resize(midpoints_.size());
+    index_scratch_.resize(2 * midpoints_.size());
+    for (std::size_t k = 0; k < midpoints_.size(); ++k) {
+        index_scratch_[2 * k] = segment_first_[k];
+        index_scratch_[2 * k + 1] = segment_first_[k] + 1;
+    }
+    vertex_count_ = vertices.size();
+    vertices_ = make_buffer(vertices.data(), vertices.size() * sizeof(Vertex));
+    radiance_ = make_buffer(nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(glm::vec4));
+    indices_ = make_buffer(index_scratch_.data(), index_scratch_.size() * sizeof(std::uint32_t), GL_DYNAMIC_STORAGE_BIT);
+    vao_ = make_vertex_array();
+    const GLuint vao = vao_.id();
+    glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, indices_.id());
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 1);
+    glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, tangent));
+    glVertexArrayAttribBinding(vao, 1, 0);
+    glVertexArrayVertexBuffer(vao, 1, radiance_.id(), 0, sizeof(glm::vec4));
+    glEnableVertexArrayAttrib(vao, 2);
+    glVertexArrayAttribFormat(vao, 2, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 2, 1);
+    GLuint q[2];
+    glCreateQueries(GL_TIME_ELAPSED, 2, q);
+    query_lighting_ = Query(q[0]);
+    query_lines_ = Query(q[1]);
+    check_errors("StrandRenderer upload");
+}
+
+void StrandRenderer::set_lights(std::span<const SrbfLight> lights) {
+    std::vector<GpuLight> gpu;
+    gpu.reserve(lights.size());
+    for (const SrbfLight& l : lights) {
+        shading::validate_light(l.lambda, l.omega, "SRBF light");
+        gpu.push_back({glm::vec4(glm::normalize(l.omega), l.lambda), glm::vec4(l.L, 0.0f)});
+    }
+    const GpuLight none{};  // a zero-size buffer cannot be bound
+    lights_ = gpu.empty() ? make_buffer(&none, sizeof none) : make_buffer(gpu.data(), gpu.size() * sizeof(GpuLight));
+    light_count_ = static_cast<int>(gpu.size());
+}
+
+float StrandRenderer::fiber_radius(const StrandSettings& s) const {
+    if (!std::isfinite(s.fiber_radius) || s.fiber_radius < 0)
+        throw Error::parameter("fibre radius", "must be a finite number >= 0 (0 = auto)");
+    return s.fiber_radius > 0 ? s.fiber_radius : auto_radius_;
+}
+
+void StrandRenderer::draw(const Camera& camera, const StrandSettings& s) {
+    const float radius = fiber_radius(s);
+    if (s.lobes < 0 || s.lobes > 7) throw Error::parameter("lobes", "must be a bit set of R (1), TT (2), TRT (4)");
+    tables_.update(s.hair, s.config);
+    glViewport(0, 0, camera.width, camera.height);
+    glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    if (s.sort_segments) {
+        std::vector<float> dist(midpoints_.size());
+        for (std::size_t k = 0; k < midpoints_.size(); ++k) dist[k] = glm::distance(camera.eye, midpoints_[k]);
+        std::iota(order_.begin(), order_.end(), 0u);
+        std::stable_sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) { return dist[a] > dist[b]; });
+        for (std::size_t k = 0; k < order_.size(); ++k) {
+            index_scratch_[2 * k] = segment_first_[order_[k]];
+            index_scratch_[2 * k + 1] = segment_first_[order_[k]] + 1;
+        }
+    } else {
+        for (std::size_t k = 0; k < segment_first_.size(); ++k) {
+            index_scratch_[2 * k] = segment_first_[k];
+            index_scratch_[2 * k + 1] = segment_first_[k] + 1;
+        }
+    }
+    glNamedBufferSubData(indices_.id(), 0, static_cast<GLsizeiptr>(index_scratch_.size() * sizeof(std::uint32_t)),
+                         index_scratch_.data());
+
+    timings_ = {};
+    if (!s.per_fragment) {  // the lighting pass: L_o per strand point
+        glBeginQuery(GL_TIME_ELAPSED, query_lighting_.id());
+        lighting_.use();
+        set_shading_uniforms(lighting_, camera, s);
+        glUniform1i(lighting_.uniform("u_vertex_count"), static_cast<GLint>(vertex_count_));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, vertices_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, radiance_.id());
+        glDispatchCompute(static_cast<GLuint>((vertex_count_ + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+        glEndQuery(GL_TIME_ELAPSED);
+    } else if (!lines_per_fragment_.id()) {
+        lines_per_fragment_ = Program({"shaders/gl/strand_lines.vert", "shaders/gl/strand_lines.frag"}, {"COIF_STRAND_PER_FRAGMENT"});
+    }
+
+    glBeginQuery(GL_TIME_ELAPSED, query_lines_.id());
+    const Program& lines = s.per_fragment ? lines_per_fragment_ : lines_;
+    lines.use();
+    if (s.per_fragment) set_shading_uniforms(lines, camera, s);
+    const glm::mat4 view = camera.view(), view_projection = camera.projection() * view;
+    glUniformMatrix4fv(lines.uniform("u_view_projection"), 1, GL_FALSE, &view_projection[0][0]);
+    glUniformMatrix4fv(lines.uniform("u_view"), 1, GL_FALSE, &view[0][0]);
+    // 2r/p with p = 2 z tan(fov/2) / height: alpha = min(1, u_coverage_scale / z).
+    glUniform1f(lines.uniform("u_coverage_scale"), radius * static_cast<float>(camera.height) / std::tan(0.5f * camera.fov_y));
+
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over"
+    glBindVertexArray(vao_.id());
+    glDrawElements(GL_LINES, static_cast<GLsizei>(index_scratch_.size()), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glEndQuery(GL_TIME_ELAPSED);
+    check_errors("StrandRenderer::draw");
+    GLuint64 ns = 0;
+    if (!s.per_fragment) {
+        glGetQueryObjectui64v(query_lighting_.id(), GL_QUERY_RESULT, &ns);
+        timings_.lighting_ms = static_cast<double>(ns) * 1e-6;
+    }
+    glGetQueryObjectui64v(query_lines_.id(), GL_QUERY_RESULT, &ns);
+    timings_.lines_ms = static_cast<double>(ns) * 1e-6;
+}
+
+// The uniforms of shaders/gl/strand_lighting.glsl, for the program in use.
+void StrandRenderer::set_shading_uniforms(const Program& program, const Camera& camera, const StrandSettings& s) {
+    glUniform3fv(program.uniform("u_eye"), 1, &camera.eye.x);
+    glUniform1i(program.uniform("u_light_count"), light_count_);
+    glUniform1i(program.uniform("u_lobes"), s.lobes);
+    glUniform1i(program.uniform("u_multiple"), s.multiple ? 1 : 0);
+    set_lighting_uniforms(program, s.hair, s.config);
+    tables_.bind(program, kFirstLutUnit);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+}
+
+Image StrandRenderer::render(const Camera& camera, const StrandSettings& settings) {
+    RenderTarget target(camera.width, camera.height, GL_RGBA16F, settings.samples);
+    target.bind();
+    draw(camera, settings);
+    return target.read_back();
+}
+
+}  // namespace coif::gl
