@@ -360,6 +360,7 @@ struct Tracer {
     const ReferenceEnvironment& env;
     const FiberBsdf& bsdf;
     int max_depth, roulette_depth;
+    bool shadows;
     FiberLobeHint hints[3];
     int n_hints = 0;
     float lobe_cdf[4] = {0, 0, 0, 0};
@@ -497,7 +498,7 @@ struct Tracer {
                 const glm::vec3 Le = env.sample(x0, x1, x2, x3, wi, p_light);
                 if (p_light > 0 && max3(Le) > 0) {
                     const glm::vec3 fs = bsdf.S(f, wi, wo) * cos_theta(f, wi);
-                    if (max3(fs) > 0 && !occluded(hit.position, wi, hit.segment)) {
+                    if (max3(fs) > 0 && !(shadows && occluded(hit.position, wi, hit.segment))) {
                         const float w = power_heuristic(p_light, direction_pdf(f, wo, wi));
                         L += throughput * fs * Le * (w / p_light);
                     }
@@ -512,11 +513,11 @@ struct Tracer {
             if (!(max3(fs) > 0)) break;
             throughput *= fs / p_dir;
             const Hit next = intersect(hit.position, wi, hit.segment);
-            if (!next.found) {
+            if (!next.found || !shadows) {  // without shadows the environment reaches through other fibres
                 const float w = power_heuristic(p_dir, env.pdf(wi));
                 L += throughput * env.radiance(wi) * w;
-                break;
             }
+            if (!next.found) break;
             if (depth >= max_depth) break;
             if (depth >= roulette_depth) {
                 const float q = std::min(0.95f, max3(throughput));
@@ -532,7 +533,7 @@ struct Tracer {
 
 Tracer make_tracer(RTCScene scene, const std::vector<std::uint32_t>& strand, const std::vector<glm::vec3>& tangent,
                    const ReferenceEnvironment& env, const FiberBsdf& bsdf, const ReferenceSettings& s) {
-    Tracer t{scene, strand.data(), tangent.data(), env, bsdf, s.max_depth, s.roulette_depth, {}, 0, {}, 0};
+    Tracer t{scene, strand.data(), tangent.data(), env, bsdf, s.max_depth, s.roulette_depth, s.shadows, {}, 0, {}, 0};
     t.n_hints = bsdf.lobe_hints(t.hints);
     float total = 0;
     for (int l = 0; l < t.n_hints; ++l) total += std::max(0.0f, t.hints[l].weight);

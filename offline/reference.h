@@ -19,7 +19,10 @@
 // environment (importance-sampled from the map itself, or from the SRBF lights) plus scattering-direction
 // sampling (the fibre's longitudinal lobes), combined by multiple importance sampling (power heuristic).
 // Paths stop after `max_depth` scattering events (1 = single scattering with shadows), with Russian
-// roulette after `roulette_depth`. The next ray of a path ignores the segment it leaves from and that
+// roulette after `roulette_depth`. With `shadows` off the environment lights every fibre as if no other
+// fibre were in the way (neither next-event nor scattering-direction samples are occluded; camera rays and
+// scattered paths still meet fibres): with max_depth 1 that is the lighting alone, what the lit strand
+// lines of online/strand_renderer.h compute, for `coif bench quality` to attribute error. The next ray of a path ignores the segment it leaves from and that
 // segment's neighbours on the same strand (a far-field fibre scatters at its surface; without this the
 // TT light would hit the fibre's own far side).
 //
@@ -90,6 +93,7 @@ struct ReferenceSettings {
     int samples_per_pixel = 16;
     int max_depth = 10;                // scattering events per path; 1 = single scattering (with shadows)
     int roulette_depth = 3;            // Russian roulette from this depth on
+    bool shadows = true;               // false: fibres do not block the environment (see the header)
     std::uint64_t seed = 1;
     int threads = 0;                   // 0: every hardware thread
     float fiber_radius = 0.0f;         // scene units; 0: auto_fiber_radius

@@ -25,28 +25,28 @@ struct GpuLight {
 
 StrandRenderer::StrandRenderer(const Strands& strands)
     : lighting_({"shaders/gl/strand_lighting.comp"}), lines_({"shaders/gl/strand_lines.vert", "shaders/gl/strand_lines.frag"}) {
-    std::vector<Vertex> vertices(strands.points.size());
+    // Two vertices per segment, both with the segment's direction as tangent (the reference's frame,
+    // offline/reference.cpp), so segment k is vertices 2k, 2k + 1.
+    std::vector<Vertex> vertices;
+    vertices.reserve(2 * strands.points.size());
     for (std::size_t s = 0; s < strands.strand_count(); ++s) {
-        const std::uint32_t b = strands.offsets[s], e = strands.offsets[s + 1];
-        for (std::uint32_t i = b; i < e; ++i) {
-            // The tangent root→tip: central difference inside the strand, one-sided at its ends.
-            const glm::vec3 prev = strands.points[i > b ? i - 1 : i], next = strands.points[i + 1 < e ? i + 1 : i];
-            const glm::vec3 d = next - prev;
-            vertices[i] = {strands.points[i], glm::length(d) > 0 ? glm::normalize(d) : glm::vec3(0, -1, 0)};
-            if (i + 1 < e) {
-                segment_first_.push_back(i);
-                midpoints_.push_back(0.5f * (strands.points[i] + strands.points[i + 1]));
-            }
+        const std::uint32_t first = strands.offsets[s], last = strands.offsets[s + 1] - 1;
+        for (std::uint32_t p = first; p < last; ++p) {
+            const glm::vec3 a = strands.points[p], b = strands.points[p + 1], d = b - a;
+            // Zero-length segments (repeated points) borrow the strand's chord, as the reference does.
+            const glm::vec3 chord = strands.points[last] - strands.points[first];
+            const glm::vec3 t = glm::length(d) > 0 ? glm::normalize(d)
+                              : glm::length(chord) > 0 ? glm::normalize(chord) : glm::vec3(0, -1, 0);
+            vertices.push_back({a, t});
+            vertices.push_back({b, t});
+            midpoints_.push_back(0.5f * (a + b));
         }
     }
     if (midpoints_.empty()) throw Error::parameter("strands", "no segments to draw");
     auto_radius_ = coif::auto_fiber_radius(strands);
     order_.resize(midpoints_.size());
     index_scratch_.resize(2 * midpoints_.size());
-    for (std::size_t k = 0; k < midpoints_.size(); ++k) {
-        index_scratch_[2 * k] = segment_first_[k];
-        index_scratch_[2 * k + 1] = segment_first_[k] + 1;
-    }
+    std::iota(index_scratch_.begin(), index_scratch_.end(), 0u);
     vertex_count_ = vertices.size();
     vertices_ = make_buffer(vertices.data(), vertices.size() * sizeof(Vertex));
     radiance_ = make_buffer(nullptr, std::max<std::size_t>(1, vertices.size()) * sizeof(glm::vec4));
@@ -95,7 +95,8 @@ void StrandRenderer::draw(const Camera& camera, const StrandSettings& s) {
     if (s.lobes < 0 || s.lobes > 7) throw Error::parameter("lobes", "must be a bit set of R (1), TT (2), TRT (4)");
     tables_.update(s.hair, s.config);
     glViewport(0, 0, camera.width, camera.height);
-    glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
+    if (s.alpha) glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    else glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
     if (s.sort_segments) {
@@ -104,14 +105,11 @@ void StrandRenderer::draw(const Camera& camera, const StrandSettings& s) {
         std::iota(order_.begin(), order_.end(), 0u);
         std::stable_sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) { return dist[a] > dist[b]; });
         for (std::size_t k = 0; k < order_.size(); ++k) {
-            index_scratch_[2 * k] = segment_first_[order_[k]];
-            index_scratch_[2 * k + 1] = segment_first_[order_[k]] + 1;
+            index_scratch_[2 * k] = 2 * order_[k];
+            index_scratch_[2 * k + 1] = 2 * order_[k] + 1;
         }
     } else {
-        for (std::size_t k = 0; k < segment_first_.size(); ++k) {
-            index_scratch_[2 * k] = segment_first_[k];
-            index_scratch_[2 * k + 1] = segment_first_[k] + 1;
-        }
+        std::iota(index_scratch_.begin(), index_scratch_.end(), 0u);
     }
     glNamedBufferSubData(indices_.id(), 0, static_cast<GLsizeiptr>(index_scratch_.size() * sizeof(std::uint32_t)),
                          index_scratch_.data());
@@ -176,7 +174,13 @@ Image StrandRenderer::render(const Camera& camera, const StrandSettings& setting
     RenderTarget target(camera.width, camera.height, GL_RGBA16F, settings.samples);
     target.bind();
     draw(camera, settings);
-    return target.read_back();
+    Image image = target.read_back();
+    if (settings.alpha && image.channels == 4)  // premultiplied → straight: RGB = C / A where something was drawn
+        for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+            const float a = image.pixels[i + 3];
+            for (int c = 0; c < 3; ++c) image.pixels[i + c] = a > 0.0f ? image.pixels[i + c] / a : 0.0f;
+        }
+    return image;
 }
 
 }  // namespace coif::gl

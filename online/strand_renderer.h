@@ -7,17 +7,17 @@
 // renderer's lighting alone, so that `coif bench quality` can attribute error to the lighting separately
 // from SATF, shadows and compositing (docs/quality.md). `coif render --strands FILE` draws with it.
 //
-// Where the lighting is evaluated. By default a compute pass evaluates it at every strand point
+// Where the lighting is evaluated. By default a compute pass evaluates it at both ends of every segment
 // (shaders/gl/strand_lighting.comp) and the lines interpolate it (Gouraud); `per_fragment` evaluates it
 // in the fragment shader instead, exactly at every fragment. Per fragment costs ~50× more on llvmpipe
 // (thin lines waste most of its 4×4-pixel shading blocks, and a line has far more fragments than points:
 // harolongo at 720×480 with 40 lights took 15 min), for a difference that docs/quality.md measures.
 //
-// Shading frame. Tangent u = the line direction (per vertex: central difference along the strand,
-// interpolated). For a round fibre the lighting depends on φo − φi only (shaders/lighting.h; the
-// reference's frame, offline/reference.cpp, differs only by a rotation about u), so v = the view
-// direction projected orthogonal to u (φo = 0) and w = u × v. Eccentric fibres (ecc_a ≠ 1) are shaded
-// with this view-aligned frame too, which is not the reference's horizontal one.
+// Shading frame. Tangent u = the segment's direction, constant along it as in the reference's fibre frame
+// (offline/reference.cpp; each segment has its own two vertices). For a round fibre the lighting depends
+// on φo − φi only (shaders/lighting.h; the reference's frame differs only by a rotation about u), so v =
+// the view direction projected orthogonal to u (φo = 0) and w = u × v. Eccentric fibres (ecc_a ≠ 1) are
+// shaded with this view-aligned frame too, which is not the reference's horizontal one.
 //
 // What a pixel sees. The fragment's radiance is L_o = Σ_j L_j (𝓜_j + d_b 𝓜^L_j) — 000 eq. 2 without the
 // fibre diameter D, as the reference renders a fibre of real width (offline/reference_fiber.h). Lines are
@@ -50,6 +50,8 @@ struct StrandSettings {
     int samples = 4;               // MSAA samples of the offscreen target
     bool sort_segments = true;     // back-to-front order of segments (off: file order)
     bool per_fragment = false;     // evaluate the lighting per fragment, not per strand point (see above)
+    bool alpha = false;            // render(): straight-alpha RGBA, A = coverage, RGB = the hair's radiance (no
+                                   // background), as the reference's `alpha` (offline/reference.h)
 };
 
 struct StrandTimings {  // GPU time of the last draw, milliseconds (GL_TIME_ELAPSED queries)
@@ -63,7 +65,8 @@ class StrandRenderer {
 public:
     explicit StrandRenderer(const Strands& strands);  // uploads once; needs a current GL 4.5 context
     void set_lights(std::span<const SrbfLight> lights);  // validated (coif::Error)
-    // Draws into the bound framebuffer (viewport set, cleared to the background first).
+    // Draws into the bound framebuffer (viewport set, cleared to the background first, or to 0 with `alpha`:
+    // premultiplied RGB and coverage A).
     void draw(const Camera& camera, const StrandSettings& settings);
     // Renders into an offscreen target of the camera's size and returns the linear RGBA image.
     Image render(const Camera& camera, const StrandSettings& settings);
@@ -84,7 +87,6 @@ private:
     StrandTimings timings_;
     std::size_t vertex_count_ = 0;
     LightingTextures tables_;
-    std::vector<std::uint32_t> segment_first_;  // first vertex of each segment
     std::vector<glm::vec3> midpoints_;
     std::vector<std::uint32_t> order_, index_scratch_;
     int light_count_ = 0;

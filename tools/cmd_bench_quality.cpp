@@ -1,6 +1,8 @@
 // coif bench quality — image quality of `coif render` against `coif reference` for the default scene and
-// every strand model in the shared data folder, plus a lighting-only case, with both times and their ratio,
-// and the reference's own noise floor (two seeds).
+// every strand model in the shared data folder (as lit strand lines and as a fitted SATF style), plus
+// lighting-only cases (sparse hair and a single strand, single scattering), with both times and their
+// ratio, and the reference's own noise floor (two seeds). Both renderers always see the same SRBF lights
+// (or the map and its fit) and the same hair parameters.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -10,12 +12,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/strands.h"
+#include "offline/envmap.h"
 #include "offline/image_metrics.h"
+#include "offline/srbf_fit.h"
+#include "offline/srbf_lights.h"
+#include "tools/assets.h"
 #include "tools/cli.h"
 #include "tools/reference_options.h"
 #include "tools/scene_options.h"
@@ -28,6 +35,13 @@ namespace fs = std::filesystem;
 // shadow each other, so that single scattering is nearly all there is and the renderer's lighting is
 // measured alone.
 constexpr int kSparseStride = 20;
+// Clusters of the styles fitted to the models for their SATF rows (`coif style import --clusters`); the
+// embedded default style has 64 too.
+constexpr int kDefaultFitClusters = 64;
+// Samples per pixel of the lighting-only rows' references: single scattering of a few hundred fibres costs
+// little, and at the rows' default of 16–32 spp the reference's own noise (sub-pixel fibres hit or missed)
+// is above the lighting error (docs/quality.md), so these rows get more.
+constexpr int kDefaultLightingSpp = 256;
 
 struct QualityOptions {
     coif::cli::ReferenceCliOptions reference;
@@ -35,6 +49,10 @@ struct QualityOptions {
     double azimuth_deg = 20, elevation_deg = 10, fov_deg = 40;
     std::string data = "../shared/data";
     std::string keep;
+    std::string db;
+    int clusters = kDefaultFitClusters;
+    int lighting_spp = kDefaultLightingSpp;
+    bool fit_models = true;
     bool convergence = true;
     bool json = false;
 };
@@ -86,15 +104,157 @@ RunTimes run_coif(const std::string& args, const fs::path& log) {
     return t;
 }
 
+// Which renderer a row measures (docs/quality.md says what each attributes).
+enum class Renderer {
+    shells,            // the SATF shell renderer (coif render --style)
+    lines,             // the lit strand lines, lighting per strand point (coif render --strands)
+    lines_per_fragment // the lit strand lines, lighting per fragment (--per-fragment)
+};
+const char* renderer_name(Renderer r) {
+    return r == Renderer::shells ? "SATF shells" : r == Renderer::lines ? "lit lines" : "lit lines, per fragment";
+}
+
 struct Scene {
     std::string name;
-    std::string strands_arg;   // "" = embedded default
-    bool lighting_only = false;
+    std::string strands_arg;   // the reference's strands; "" = the embedded default style's sampled strands
+    Renderer renderer = Renderer::shells;
+    std::string fit_model;     // shells: fit a style to this strand file first ("" = the embedded default style)
+    bool lighting_only = false;  // reference depth 1, render without multiple scattering, SRBF lights only
+    bool reference_shadows = true;  // false: coif reference --no-shadows (the lighting alone)
 };
+
+struct ReferenceRun {
+    fs::path image;
+    RunTimes times;
+    coif::CompareResult convergence;
+    coif::CompareResult radiance_convergence;  // straight-alpha rows: the radiance where both seeds hit
+};
+
+// A straight-alpha image (coif render/reference --alpha) over the background: what its pixels show,
+// exactly what the renderers composite without --alpha (A·L + (1 − A)·background).
+coif::Image over_background(const coif::Image& straight, const glm::vec3& background) {
+    coif::Image out(straight.width, straight.height, 3);
+    for (int y = 0; y < straight.height; ++y)
+        for (int x = 0; x < straight.width; ++x) {
+            const float* p = straight.at(x, y);
+            const float a = straight.channels == 4 ? p[3] : 1.0f;
+            for (int c = 0; c < 3; ++c) out.at(x, y)[c] = a * p[c] + (1.0f - a) * background[c];
+        }
+    return out;
+}
+
+// Two straight-alpha images reduced to the pixels both cover (A > kMaskAlphaThreshold in both; elsewhere
+// RGBA = 0): their RGB is the hair's radiance alone, so their metrics measure lighting, not coverage.
+std::pair<coif::Image, coif::Image> where_both_cover(const coif::Image& a, const coif::Image& b) {
+    std::pair<coif::Image, coif::Image> out{a, b};
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            if (!(a.at(x, y)[3] > coif::kMaskAlphaThreshold && b.at(x, y)[3] > coif::kMaskAlphaThreshold))
+                for (int c = 0; c < 4; ++c) out.first.at(x, y)[c] = out.second.at(x, y)[c] = 0.0f;
+    return out;
+}
+
+struct CoverageStats {
+    double ratio = 0;     // Σ A of the render / Σ A of the reference
+    double mean_abs = 0;  // mean |A_render − A_reference| over the pixels either covers
+};
+CoverageStats coverage_stats(const coif::Image& ref, const coif::Image& ren) {
+    double sum_ref = 0, sum_ren = 0, abs_sum = 0;
+    std::size_t n = 0;
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) {
+            const float a = ref.at(x, y)[3], b = ren.at(x, y)[3];
+            sum_ref += a;
+            sum_ren += b;
+            if (a > coif::kMaskAlphaThreshold || b > coif::kMaskAlphaThreshold) {
+                abs_sum += std::abs(double(a) - b);
+                ++n;
+            }
+        }
+    return {sum_ref > 0 ? sum_ren / sum_ref : 0.0, n ? abs_sum / double(n) : 0.0};
+}
 
 nlohmann::json metric_value(double v) {
     if (std::isinf(v)) return "inf";
     return v;
+}
+
+nlohmann::json metrics_json(const coif::CompareResult& q) {
+    return {{"mask_pixels", q.mask.count},
+            {"linear", {{"psnr_db", metric_value(q.linear.psnr_db)}, {"ssim", q.linear.ssim}, {"flip_mean", q.linear.flip}}},
+            {"tone_mapped",
+             {{"psnr_db", metric_value(q.tone_mapped.psnr_db)}, {"ssim", q.tone_mapped.ssim}, {"flip_mean", q.tone_mapped.flip}}}};
+}
+struct RenderRun {
+    fs::path image;
+    RunTimes times;
+    double fit_seconds = 0;
+};
+
+
+void write_text(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) throw coif::Error(path, "", "cannot write this file");
+}
+
+// The lights both renderers see, as files: `render` for coif render --env, `reference` for coif reference's
+// lighting options; the lighting-only rows use `single_render`/`single_reference`, always SRBF lights.
+struct BenchLighting {
+    std::string render, reference, single_render, single_reference, words;
+};
+
+BenchLighting bench_lighting(const coif::cli::ReferenceCliOptions& ref, const fs::path& dir) {
+    BenchLighting b;
+    if (!ref.lights.empty()) {
+        b.render = b.single_render = ref.lights;
+        b.reference = b.single_reference = " --lights " + quote(ref.lights);
+        b.words = "SRBF lights " + ref.lights;
+    } else if (!ref.env.empty()) {
+        // coif render would fit the map itself; fitting once here gives every row the same lights and lets the
+        // lighting-only rows light the reference with them too (no env-fit error there).
+        std::fprintf(stderr, "fitting SRBF lights to %s once for every coif render\n", ref.env.c_str());
+        coif::SrbfLightSet set;
+        set.lights = coif::fit_srbf_lights(coif::load_envmap(ref.env), coif::SrbfFitSettings{}).lights;
+        const fs::path path = dir / "fitted_lights.json";
+        coif::write_srbf_lights(path, set);
+        b.render = b.single_render = path.string();
+        b.reference = " --env " + quote(ref.env);
+        b.single_reference = " --lights " + quote(path.string());
+        b.words = "map " + ref.env + " (reference; coif render and the lighting-only rows: its 40 fitted SRBF lights)";
+    } else if (ref.env_constant.size() == 3) {
+        // A constant environment as one SRBF light of the broadest bandwidth: G_j varies by < 4e-4 over the sphere
+        // (exp(−2·2/λ²) at λ = 100), so the reference keeps the exact constant for every row.
+        coif::SrbfLightSet set;
+        set.lights.push_back({glm::vec3(ref.env_constant[0], ref.env_constant[1], ref.env_constant[2]), glm::vec3(0, 1, 0),
+                              coif::shading::kMaxLambda});
+        const fs::path path = dir / "constant_light.json";
+        coif::write_srbf_lights(path, set);
+        b.render = b.single_render = path.string();
+        b.reference = b.single_reference = ref.lighting_args();
+        b.words = "constant environment (coif render: one SRBF light of λ = 100)";
+    } else {
+        const std::vector<std::byte> bytes = coif::asset_bytes("default_lights.json");
+        const fs::path path = dir / "default_lights.json";
+        write_text(path, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        b.render = b.single_render = path.string();
+        b.reference = b.single_reference = " --lights " + quote(path.string());
+        b.words = "the embedded default lights (40 SRBF lights, courtyard)";
+    }
+    return b;
+}
+
+// A coif render --params file with the reference's hair parameters (000's links, as the reference's options).
+void write_render_params(const fs::path& path, const coif::shading::HairParams& p, bool multiple) {
+    constexpr double kDeg = 57.29577951308232;
+    const nlohmann::json j = {{"eta", p.eta},
+                              {"sigma_a", {p.sigma_a.x, p.sigma_a.y, p.sigma_a.z}},
+                              {"alpha_R_deg", p.alpha_R * kDeg},
+                              {"beta_R_deg", p.beta_R * kDeg},
+                              {"ecc_a", p.ecc_a},
+                              {"w_c_deg", p.w_c * kDeg},
+                              {"multiple", multiple}};
+    write_text(path, j.dump(2));
 }
 
 void add_bench_quality(CLI::App& root) {
@@ -103,13 +263,17 @@ void add_bench_quality(CLI::App& root) {
     o->reference.settings.samples_per_pixel = 16;
     CLI::App* cmd = bench->add_subcommand(
         "quality",
-        "Image quality of `coif render` against the brute-force `coif reference` at the same camera and parameters:\n"
-        "for the embedded default scene, every .hair/.data model in --data, and a lighting-only case (every 20th\n"
-        "strand of the default model, single scattering: fibres barely occlude each other, so the error is the\n"
-        "renderer's lighting alone). Both commands run as subprocesses of this coif; lighting and hair options are\n"
-        "passed to `coif render` only where its --help lists them (the note says which were not). Prints PSNR,\n"
-        "SSIM and mean FLIP over hair pixels (see `coif compare --help`), both wall times and their ratio, and\n"
-        "the reference's noise floor: the same metrics between two reference renders with different seeds.");
+        "Image quality of `coif render` against the brute-force `coif reference` at the same camera, lights and hair\n"
+        "parameters. Rows: the embedded default style (SATF shells); every .hair/.data model in --data twice, as lit\n"
+        "strand lines (the renderer's lighting without SATF or shadows) and as a style fitted to it (`coif style\n"
+        "import --clusters N`, SATF shells, framed on the model); and two lighting-only cases, every 20th strand of\n"
+        "the default model and a single strand, lit strand lines per fragment without multiple scattering against\n"
+        "the reference at depth 1 (single scattering): fibres barely occlude each other, so the error is the lighting\n"
+        "alone. Lights: --lights, else --env (coif render gets its fitted SRBF lights; the lighting-only rows light\n"
+        "the reference with them too), else --env-constant, else the embedded default lights. Both commands run as\n"
+        "subprocesses of this coif. Prints PSNR, SSIM and mean FLIP over hair pixels (see `coif compare --help`),\n"
+        "both wall times and their ratio, and the reference's noise floor: the same metrics between two reference\n"
+        "renders with different seeds. docs/quality.md explains what each row attributes.");
     o->reference.add_to(cmd);
     cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(8, 4096));
     cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(8, 4096));
@@ -117,15 +281,21 @@ void add_bench_quality(CLI::App& root) {
     cmd->add_option("--elevation", o->elevation_deg, "Camera elevation in degrees")->check(CLI::Range(-89.0, 89.0));
     cmd->add_option("--fov", o->fov_deg, "Vertical field of view in degrees")->check(CLI::Range(1.0, 150.0));
     cmd->add_option("--data", o->data, "Folder whose .hair and .data models are benchmarked");
+    cmd->add_option("--clusters", o->clusters, "Clusters of the styles fitted to the models (SATF rows)")
+        ->check(CLI::Range(1, 100000))->capture_default_str();
+    cmd->add_flag("!--no-fit", o->fit_models, "Skip the SATF rows of the models (no style fitting)");
+    cmd->add_option("--lighting-spp", o->lighting_spp, "Samples per pixel of the lighting-only rows' references")
+        ->check(CLI::Range(1, coif::kMaxReferenceSpp))->capture_default_str();
+    cmd->add_option("--db", o->db, "HRIR database for the SATF rows (default: coif render's cached default database)");
     cmd->add_option("--keep", o->keep, "Keep the images here (default: a temporary folder, removed)");
     cmd->add_flag("!--no-convergence", o->convergence, "Skip the second reference render (the noise floor)");
     coif::cli::add_json_flag(cmd, o->json);
     coif::cli::examples(cmd, "  coif bench quality\n"
                              "  coif bench quality --spp 64 --env ../shared/data/blender_studiolight_city.exr --keep quality/\n"
-                             "  coif bench quality --json > quality.json");
+                             "  coif bench quality --no-fit --json > quality.json");
     cmd->callback([o] {
         // Validate the shared options up front (clear errors before minutes of rendering).
-        (void)o->reference.hair_params();
+        const coif::shading::HairParams hair = o->reference.hair_params();
         (void)o->reference.environment();
         const coif::ReferenceSettings settings = o->reference.reference_settings();
 
@@ -149,84 +319,151 @@ void add_bench_quality(CLI::App& root) {
             }
         } cleanup{dir, temporary};
 
-        std::vector<Scene> scenes{{"default", "", false}};
+        const BenchLighting lighting = bench_lighting(o->reference, dir);
+        const fs::path params_full = dir / "params.json", params_single = dir / "params_single_scattering.json";
+        write_render_params(params_full, hair, true);
+        write_render_params(params_single, hair, false);
+
+        std::vector<Scene> scenes{{"default (SATF shells)", "", Renderer::shells, "", false}};
         if (fs::is_directory(o->data)) {
             std::vector<fs::path> models;
             for (const auto& e : fs::directory_iterator(o->data))
                 if (e.path().extension() == ".hair" || e.path().extension() == ".data") models.push_back(e.path());
             std::sort(models.begin(), models.end());
-            for (const auto& m : models) scenes.push_back({m.filename().string(), m.string(), false});
+            for (const auto& m : models) {
+                const std::string name = m.filename().string();
+                scenes.push_back({name + " (lit lines)", m.string(), Renderer::lines, "", false});
+                if (o->fit_models)
+                    scenes.push_back({name + " (SATF, " + std::to_string(o->clusters) + " clusters)", m.string(), Renderer::shells,
+                                      m.string(), false});
+            }
         } else {
-            std::fprintf(stderr, "note: %s is not a folder; only the default scene and the lighting-only case\n", o->data.c_str());
+            std::fprintf(stderr, "note: %s is not a folder; only the default scene and the lighting-only cases\n", o->data.c_str());
         }
         {
             coif::cli::SceneOptions def;
-            coif::Strands all = def.load_strands();
-            coif::Strands sparse;
-            for (size_t s = 0; s < all.strand_count(); s += kSparseStride)
-                sparse.add_strand(std::vector<glm::vec3>(all.points.begin() + all.offsets[s], all.points.begin() + all.offsets[s + 1]));
-            const fs::path path = dir / "lighting_only_sparse.hair";
-            coif::write_hair(path, sparse);
-            scenes.push_back({"lighting only (default/20, depth 1)", path.string(), true});
+            const coif::Strands all = def.load_strands();
+            coif::Strands sparse, single;
+            const auto strand = [&](size_t s) {
+                return std::vector<glm::vec3>(all.points.begin() + all.offsets[s], all.points.begin() + all.offsets[s + 1]);
+            };
+            for (size_t s = 0; s < all.strand_count(); s += kSparseStride) sparse.add_strand(strand(s));
+            single.add_strand(strand(all.strand_count() / 2));
+            const fs::path sparse_path = dir / "lighting_only_sparse.hair", single_path = dir / "lighting_only_single.hair";
+            coif::write_hair(sparse_path, sparse);
+            coif::write_hair(single_path, single);
+            scenes.push_back({"lighting only: default/20, no shadows", sparse_path.string(), Renderer::lines_per_fragment, "", true, false});
+            scenes.push_back({"lighting + shadows: default/20", sparse_path.string(), Renderer::lines_per_fragment, "", true, true});
+            scenes.push_back({"lighting only: single strand", single_path.string(), Renderer::lines_per_fragment, "", true, false});
         }
 
         char camera_args[256];
         std::snprintf(camera_args, sizeof camera_args, " --width %d --height %d --azimuth %.9g --elevation %.9g --fov %.9g", o->width,
                       o->height, o->azimuth_deg, o->elevation_deg, o->fov_deg);
-        // Which of our options `coif render` understands.
-        const fs::path help_log = dir / "render_help.txt";
-        run_coif("render --help", help_log);
-        const std::string render_help = read_text(help_log);
-        std::vector<std::string> render_ignores;
-        const auto render_accepts = [&](const std::string& flag) { return render_help.find(flag + " ") != std::string::npos ||
-                                                                          render_help.find(flag + "\n") != std::string::npos ||
-                                                                          render_help.find(flag + ",") != std::string::npos; };
-        const std::string lighting = o->reference.lighting_args(), hair = o->reference.hair_args();
-        std::string render_extra;
-        const auto pass = [&](const std::string& args, const char* what) {
-            if (args.empty()) return;
-            const std::string flag = args.substr(1, args.find(' ', 1) - 1);
-            if (render_accepts(flag)) render_extra += args;
-            else render_ignores.push_back(std::string(what) + " (" + flag + ")");
-        };
-        // `coif render --env` takes either a map or a lights file; the reference names the latter --lights.
-        const bool lights_via_env = lighting.rfind(" --lights ", 0) == 0 && !render_accepts("--lights") && render_accepts("--env");
-        pass(lights_via_env ? " --env" + lighting.substr(std::string(" --lights").size()) : lighting, "lighting");
-        pass(hair, "hair parameters");
-        if (lighting.empty() && !render_accepts("--env") && !render_accepts("--lights"))
-            render_ignores.push_back("lighting (coif render has no --env/--lights: its own light)");
+        const std::string hair_args = o->reference.hair_args();
+        std::ostringstream radius_arg;
+        if (settings.fiber_radius > 0) radius_arg << " --radius " << settings.fiber_radius;
 
+        std::map<std::string, ReferenceRun> references;  // by arguments: rows of one model share its reference
+        std::map<std::string, RenderRun> renders;        // by arguments: the sparse rows share their render
         nlohmann::json rows = nlohmann::json::array();
         if (!o->json)
-            std::printf("%-36s %7s %8s %8s %7s | %8s %8s %7s %7s | %8s %7s\n", "scene", "strands", "render s", "ref s", "ratio",
-                        "PSNR lin", "PSNR tm", "SSIM tm", "FLIP tm", "conv PSNR", "conv FLIP");
+            std::printf("%-40s %7s %8s %8s %7s | %8s %8s %7s %7s | %8s %7s\n", "scene (renderer)", "strands", "render s", "ref s",
+                        "ratio", "PSNR lin", "PSNR tm", "SSIM tm", "FLIP tm", "conv PSNR", "conv FLIP");
         for (const Scene& sc : scenes) {
             const std::string stem = std::to_string(rows.size());
             const std::string strands_arg = sc.strands_arg.empty() ? std::string() : " --strands " + quote(sc.strands_arg);
-            const fs::path render_out = dir / (stem + "_render.exr"), ref_out = dir / (stem + "_reference.exr"),
-                           ref2_out = dir / (stem + "_reference_seed2.exr");
+
+            // The reference (once per distinct set of arguments).
             std::ostringstream ref_args;
-            ref_args << strands_arg << camera_args << lighting << hair << " --spp " << settings.samples_per_pixel << " --max-depth "
-                     << (sc.lighting_only ? 1 : settings.max_depth) << " --threads " << settings.threads;
-            if (settings.fiber_radius > 0) ref_args << " --radius " << settings.fiber_radius;
+            ref_args << strands_arg << camera_args << (sc.lighting_only ? lighting.single_reference : lighting.reference) << hair_args
+                     << " --spp " << (sc.lighting_only ? o->lighting_spp : settings.samples_per_pixel)
+                     << " --max-depth " << (sc.lighting_only ? 1 : settings.max_depth)
+                     << " --threads " << settings.threads << radius_arg.str() << (sc.reference_shadows ? "" : " --no-shadows")
+                     << (sc.lighting_only ? " --alpha" : "");
             if (!o->reference.background.empty())
                 ref_args << " --background " << settings.background.x << ' ' << settings.background.y << ' ' << settings.background.z;
-            const RunTimes tr = run_coif("render" + strands_arg + camera_args + render_extra + " -o " + quote(render_out.string()),
-                                         dir / (stem + "_render.log"));
-            const RunTimes tf = run_coif("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed) + " -o " +
-                                             quote(ref_out.string()),
-                                         dir / (stem + "_reference.log"));
-            const coif::Image ref = coif::read_image(ref_out), ren = coif::read_image(render_out);
-            const coif::CompareResult q = coif::compare_images(ref, ren, {}, ref_out.string(), render_out.string());
-            coif::CompareResult conv;
-            if (o->convergence) {
-                run_coif("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed + 1) + " -o " + quote(ref2_out.string()),
-                         dir / (stem + "_reference_seed2.log"));
-                conv = coif::compare_images(ref, coif::read_image(ref2_out), {}, ref_out.string(), ref2_out.string());
+            auto ref_it = references.find(ref_args.str());
+            if (ref_it == references.end()) {
+                ReferenceRun run;
+                run.image = dir / (stem + "_reference.exr");
+                run.times = run_coif("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed) + " -o " +
+                                         quote(run.image.string()),
+                                     dir / (stem + "_reference.log"));
+                if (o->convergence) {
+                    const fs::path second = dir / (stem + "_reference_seed2.exr");
+                    run_coif("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed + 1) + " -o " + quote(second.string()),
+                             dir / (stem + "_reference_seed2.log"));
+                    const coif::Image a = coif::read_image(run.image), b = coif::read_image(second);
+                    if (sc.lighting_only) {
+                        run.convergence = coif::compare_images(over_background(a, settings.background), over_background(b, settings.background),
+                                                               {}, run.image.string(), second.string());
+                        const auto [ra, rb] = where_both_cover(a, b);
+                        run.radiance_convergence = coif::compare_images(ra, rb, {coif::MaskMode::alpha}, run.image.string(), second.string());
+                    } else {
+                        run.convergence = coif::compare_images(a, b, {}, run.image.string(), second.string());
+                    }
+                }
+                ref_it = references.emplace(ref_args.str(), run).first;
             }
+            const ReferenceRun& ref_run = ref_it->second;
+
+            // The render (once per distinct set of arguments).
+            std::string render_args = std::string(camera_args) + " --env " + quote(sc.lighting_only ? lighting.single_render : lighting.render) +
+                                      " --params " + quote((sc.lighting_only ? params_single : params_full).string());
+            if (sc.renderer == Renderer::shells) {
+                if (!sc.fit_model.empty()) render_args += " --frame-strands " + quote(sc.fit_model);
+                if (!o->db.empty()) render_args += " --db " + quote(o->db);
+            } else {
+                render_args += strands_arg + radius_arg.str();
+                if (sc.renderer == Renderer::lines_per_fragment) render_args += " --per-fragment";
+                if (sc.lighting_only) render_args += " --alpha";
+            }
+            const std::string render_key = render_args + (sc.fit_model.empty() ? "" : " fitted to " + sc.fit_model);
+            auto render_it = renders.find(render_key);
+            if (render_it == renders.end()) {
+                RenderRun run;
+                std::string args = render_args;
+                if (!sc.fit_model.empty()) {
+                    const fs::path style = dir / (stem + "_style.json");
+                    run.fit_seconds = run_coif("style import " + quote(sc.fit_model) + " --clusters " + std::to_string(o->clusters) +
+                                                   " -o " + quote(style.string()),
+                                               dir / (stem + "_style.log"))
+                                          .wall;
+                    args += " --style " + quote(style.string());
+                }
+                run.image = dir / (stem + "_render.exr");
+                run.times = run_coif("render" + args + " -o " + quote(run.image.string()), dir / (stem + "_render.log"));
+                render_it = renders.emplace(render_key, run).first;
+            }
+            const RenderRun& render_run = render_it->second;
+            const fs::path& render_out = render_run.image;
+            const RunTimes& tr = render_run.times;
+            const double fit_seconds = render_run.fit_seconds;
+
+            const coif::Image ref = coif::read_image(ref_run.image), ren = coif::read_image(render_out);
+            // Lighting rows are straight alpha: composited for the row's metrics, and also compared where both hit.
+            const coif::CompareResult q =
+                sc.lighting_only ? coif::compare_images(over_background(ref, settings.background), over_background(ren, settings.background), {},
+                                                        ref_run.image.string(), render_out.string())
+                                 : coif::compare_images(ref, ren, {}, ref_run.image.string(), render_out.string());
+            coif::CompareResult radiance;
+            CoverageStats coverage;
+            if (sc.lighting_only) {
+                const auto [ra, rb] = where_both_cover(ref, ren);
+                radiance = coif::compare_images(ra, rb, {coif::MaskMode::alpha}, ref_run.image.string(), render_out.string());
+                coverage = coverage_stats(ref, ren);
+            }
+            const coif::CompareResult& conv = ref_run.convergence;
             const size_t n_strands = sc.strands_arg.empty() ? coif::cli::SceneOptions{}.load_strands().strand_count()
                                                             : coif::read_strands(sc.strands_arg).strand_count();
+            const RunTimes& tf = ref_run.times;
             nlohmann::json row = {{"scene", sc.name},
+                                  {"renderer", renderer_name(sc.renderer)},
+                                  {"reference_max_depth", sc.lighting_only ? 1 : settings.max_depth},
+                                  {"reference_spp", sc.lighting_only ? o->lighting_spp : settings.samples_per_pixel},
+                                  {"reference_shadows", sc.reference_shadows},
+                                  {"render_multiple_scattering", !sc.lighting_only},
                                   {"strands", n_strands},
                                   {"render_seconds", tr.wall},
                                   {"render_cpu_seconds", tr.cpu},
@@ -237,6 +474,12 @@ void add_bench_quality(CLI::App& root) {
                                   {"linear", {{"psnr_db", metric_value(q.linear.psnr_db)}, {"ssim", q.linear.ssim}, {"flip_mean", q.linear.flip}}},
                                   {"tone_mapped",
                                    {{"psnr_db", metric_value(q.tone_mapped.psnr_db)}, {"ssim", q.tone_mapped.ssim}, {"flip_mean", q.tone_mapped.flip}}}};
+            if (fit_seconds > 0) row["style_fit_seconds"] = fit_seconds;
+            if (sc.lighting_only) {
+                row["radiance_where_both_hit"] = metrics_json(radiance);
+                if (o->convergence) row["radiance_where_both_hit"]["reference_convergence"] = metrics_json(ref_run.radiance_convergence);
+                row["coverage"] = {{"render_over_reference", coverage.ratio}, {"mean_abs_difference", coverage.mean_abs}};
+            }
             if (o->convergence)
                 row["reference_convergence"] = {{"psnr_db_tone_mapped", metric_value(conv.tone_mapped.psnr_db)},
                                                 {"psnr_db_linear", metric_value(conv.linear.psnr_db)},
@@ -244,35 +487,46 @@ void add_bench_quality(CLI::App& root) {
                                                 {"flip_mean_tone_mapped", conv.tone_mapped.flip}};
             rows.push_back(row);
             if (!o->json) {
-                std::printf("%-36s %7zu %8.2f %8.2f %7.1f | %8s %8s %7.4f %7.4f | %8s %7s\n", sc.name.c_str(), n_strands, tr.wall, tf.wall,
+                std::printf("%-40s %7zu %8.2f %8.2f %7.1f | %8s %8s %7.4f %7.4f | %8s %7s\n", sc.name.c_str(), n_strands, tr.wall, tf.wall,
                             tf.wall / tr.wall, coif::format_metric(q.linear.psnr_db, 2).c_str(),
                             coif::format_metric(q.tone_mapped.psnr_db, 2).c_str(), q.tone_mapped.ssim, q.tone_mapped.flip,
                             o->convergence ? coif::format_metric(conv.tone_mapped.psnr_db, 2).c_str() : "-",
                             o->convergence ? coif::format_metric(conv.tone_mapped.flip, 4).c_str() : "-");
+                if (sc.lighting_only) {
+                    const coif::CompareResult& rc = ref_run.radiance_convergence;
+                    std::printf("  radiance where both hit (%6zu px)    coverage ratio %5.3f, |dA| %5.3f | %8s %8s %7.4f %7.4f | %8s %7s\n",
+                                radiance.mask.count, coverage.ratio, coverage.mean_abs, coif::format_metric(radiance.linear.psnr_db, 2).c_str(),
+                                coif::format_metric(radiance.tone_mapped.psnr_db, 2).c_str(), radiance.tone_mapped.ssim, radiance.tone_mapped.flip,
+                                o->convergence ? coif::format_metric(rc.tone_mapped.psnr_db, 2).c_str() : "-",
+                                o->convergence ? coif::format_metric(rc.tone_mapped.flip, 4).c_str() : "-");
+                }
                 std::fflush(stdout);
             }
         }
-        std::string ignores;
-        for (const auto& s : render_ignores) ignores += (ignores.empty() ? "" : "; ") + s;
+        const std::string note = o->reference.background.empty() ? std::string()
+                                                                 : "coif render has no --background: it draws over 0.05 0.05 0.06";
         const nlohmann::json doc = {{"width", o->width},
                                     {"height", o->height},
                                     {"samples_per_pixel", settings.samples_per_pixel},
                                     {"max_depth", settings.max_depth},
+                                    {"lighting_samples_per_pixel", o->lighting_spp},
                                     {"seed", settings.seed},
-                                    {"environment", lighting.empty() ? std::string("constant 1 1 1") : lighting.substr(1)},
-                                    {"render_ignores", ignores},
+                                    {"lighting", lighting.words},
+                                    {"note", note},
                                     {"goal", "mean FLIP <= 0.10 and PSNR >= 30 dB on hair pixels (tone-mapped)"},
                                     {"scenes", rows}};
         if (o->json) {
             coif::cli::print_json(doc);
             return;
         }
-        std::printf("\n%dx%d, reference %d spp, max depth %d (lighting only: 1), seed %llu; metrics over hair pixels, tm = tone-mapped\n"
-                    "(the PNG tone map), lin = linear; ratio = reference time / render time (wall, process start included);\n"
+        std::printf("\n%dx%d, reference %d spp, max depth %d (lighting rows: %d spp, depth 1), seed %llu; lit by %s.\n"
+                    "Metrics over hair pixels, tm = tone-mapped (the PNG tone map), lin = linear; ratio = reference time /\n"
+                    "render time (wall, process start included; SATF rows of models: style fitting not included);\n"
                     "conv = reference seed %llu vs seed %llu (the noise floor). Goal: mean FLIP <= 0.10 and PSNR >= 30 dB.\n",
-                    o->width, o->height, settings.samples_per_pixel, settings.max_depth, static_cast<unsigned long long>(settings.seed),
-                    static_cast<unsigned long long>(settings.seed), static_cast<unsigned long long>(settings.seed + 1));
-        if (!ignores.empty()) std::printf("note: coif render ignores %s, so it is not lit or shaded like the reference.\n", ignores.c_str());
+                    o->width, o->height, settings.samples_per_pixel, settings.max_depth, o->lighting_spp,
+                    static_cast<unsigned long long>(settings.seed), lighting.words.c_str(), static_cast<unsigned long long>(settings.seed),
+                    static_cast<unsigned long long>(settings.seed + 1));
+        if (!note.empty()) std::printf("note: %s.\n", note.c_str());
         if (!temporary) std::printf("images and logs in %s\n", dir.string().c_str());
     });
 }

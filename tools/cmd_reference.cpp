@@ -63,8 +63,8 @@ void add_reference(CLI::App& root) {
         wo.exposure = o->exposure;
         char desc[512];
         std::snprintf(desc, sizeof desc,
-                      "coif reference: Embree fibres (radius %g), exact Marschner, path traced (max depth %d), %d spp, seed %llu; %s; %s",
-                      double(stats.fiber_radius), s.max_depth, stats.samples_per_pixel, static_cast<unsigned long long>(s.seed),
+                      "coif reference: Embree fibres (radius %g), exact Marschner, path traced (max depth %d%s), %d spp, seed %llu; %s; %s",
+                      double(stats.fiber_radius), s.max_depth, s.shadows ? "" : ", no shadows", stats.samples_per_pixel, static_cast<unsigned long long>(s.seed),
                       env.label().c_str(), label.c_str());
         wo.description = desc;
         coif::write_image(o->output, image, wo);

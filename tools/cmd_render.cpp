@@ -33,6 +33,7 @@ struct RenderOptions {
     int lighting_rows = 0;
     float radius = 0.0f;
     bool per_fragment = false;
+    bool alpha = false;
 };
 
 void add_render(CLI::App& root) {
@@ -83,6 +84,9 @@ void add_render(CLI::App& root) {
         ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
     render->add_flag("--per-fragment", o->per_fragment,
                      "Strand lines: evaluate the lighting at every fragment, not at the strand points (exact, ~50x slower)");
+    render->add_flag("--alpha", o->alpha,
+                     "Strand lines: write straight-alpha RGBA (A = fibre coverage, RGB = the hair's radiance, no background), "
+                     "as coif reference --alpha");
     render->add_flag("--preview-strands", o->preview,
                      "Draw the style's strands as lit GL lines (the strand renderer of --strands), not the SATF shells");
     coif::cli::examples(render, "  coif render -o hair.png\n"
@@ -106,6 +110,7 @@ void add_render(CLI::App& root) {
             settings.samples = o->samples;
             settings.fiber_radius = o->radius;
             settings.per_fragment = o->per_fragment;
+            settings.alpha = o->alpha;
             if (!o->params.empty()) {
                 const coif::gl::ShellSettings p = coif::gl::read_shell_settings(o->params);
                 settings.hair = p.hair;
@@ -134,6 +139,7 @@ void add_render(CLI::App& root) {
             return;
         }
         // Everything that can be refused is read before anything is rendered or written.
+        if (o->alpha) throw coif::Error::parameter("option --alpha", "only the strand lines (--strands, --preview-strands) write straight alpha");
         coif::gl::ShellSettings settings;
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);

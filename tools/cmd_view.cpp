@@ -42,6 +42,7 @@ void add_view(CLI::App& root) {
                               "  xvfb-run -a coif view --frames 3 --screenshot shot.png");
     view->callback([o] {
         const coif::Strands strands = o->scene.load_strands();
+        const auto box = o->scene.frame_box(strands);
         auto context = coif::gl::Context::window(o->scene.width, o->scene.height, "coif view");
         GLFWwindow* window = context->glfw_window();
         coif::gl::StrandPreview preview(strands);
@@ -75,7 +76,7 @@ void add_view(CLI::App& root) {
             so.height = fb_h;
             so.azimuth_deg = orbit.azimuth;
             so.elevation_deg = orbit.elevation;
-            coif::Camera camera = so.camera_for(strands);
+            coif::Camera camera = so.camera_around(box);
             camera.eye = camera.target + float(orbit.distance_scale) * (camera.eye - camera.target);
             camera.near_plane *= float(orbit.distance_scale);
             camera.far_plane *= float(orbit.distance_scale);

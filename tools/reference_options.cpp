@@ -45,6 +45,9 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
                     "Most scattering events per path: 1 = single scattering with ray-traced shadows; more = multiple "
                     "scattering between fibres")
         ->check(CLI::Range(1, kMaxReferenceDepth));
+    app->add_flag("!--no-shadows", settings.shadows,
+                  "Light every fibre as if no other fibre blocked the environment (camera rays still stop at the first "
+                  "fibre): with --max-depth 1, the lighting alone");
     app->add_option("--seed", settings.seed, "Random seed; the same seed gives the same image on any thread count");
     app->add_option("--threads", settings.threads, "Worker threads (0 = every hardware thread)")->check(CLI::Range(0, 4096));
     app->add_option("--radius", settings.fiber_radius,

@@ -64,9 +64,9 @@ std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* l
 }
 
 Camera shell_camera(const SceneOptions& scene, const gl::ShellRenderer& r) {
-    const Camera cam = Camera::orbit(r.bounds_min(), r.bounds_max(), static_cast<float>(radians(scene.azimuth_deg)),
-                                     static_cast<float>(radians(scene.elevation_deg)), scene.width, scene.height,
-                                     static_cast<float>(radians(scene.fov_deg)));
+    // What `coif reference` frames for the same options (the style's sampled strands, or --frame-strands),
+    // so that the two images line up pixel for pixel.
+    const Camera cam = scene.frame_strands.empty() ? scene.camera_for(scene.load_strands()) : scene.camera_for(Strands{});
     const glm::vec3 lo = r.bounds_min(), hi = r.bounds_max();
     if (glm::all(glm::greaterThan(cam.eye, lo)) && glm::all(glm::lessThan(cam.eye, hi)))
         throw Error::parameter("camera", "the eye lies inside the hair's bounding box");

@@ -20,7 +20,8 @@ std::filesystem::path default_database_path();
 HrirDatabase open_render_database(const std::string& db_path);
 // --env: "" = the embedded default lights, *.json = a lights file, else a map fitted with 40 lights.
 std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* label);
-// The orbit camera of the scene options around the shells; refuses an eye inside the hair's box.
+// The orbit camera of the scene options around the style's sampled strands (SceneOptions::camera_for of
+// load_strands, as `coif reference` frames them) or --frame-strands; refuses an eye inside the shells' box.
 Camera shell_camera(const SceneOptions& scene, const gl::ShellRenderer& renderer);
 
 }  // namespace coif::cli

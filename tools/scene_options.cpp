@@ -28,6 +28,9 @@ void SceneOptions::add_to(CLI::App* app) {
     app->add_option("--elevation", elevation_deg, "Camera elevation in degrees above the horizontal")->check(CLI::Range(-89.0, 89.0));
     app->add_option("--fov", fov_deg, "Vertical field of view in degrees")->check(CLI::Range(1.0, 150.0));
     app->add_flag("--keep-axes", keep_axes, "Keep the file's axes (by default a model whose hair hangs along -x or -z is turned y-up)");
+    app->add_option("--frame-strands", frame_strands,
+                    "Frame the camera on this strand file (oriented as --strands) instead of what is drawn: lines up images "
+                    "of different geometry of the same hair, e.g. a style fitted to the file and the file itself");
 }
 
 Strands SceneOptions::load_strands(std::string* label) const {
@@ -43,10 +46,24 @@ Strands SceneOptions::load_strands(std::string* label) const {
     return s;
 }
 
-Camera SceneOptions::camera_for(const Strands& s) const {
-    const StrandStats st = strand_stats(s);
-    return Camera::orbit(glm::vec3(st.bbox_min), glm::vec3(st.bbox_max), static_cast<float>(radians(azimuth_deg)),
-                         static_cast<float>(radians(elevation_deg)), width, height, static_cast<float>(radians(fov_deg)));
+std::pair<glm::vec3, glm::vec3> SceneOptions::frame_box(const Strands& drawn) const {
+    StrandStats st;
+    if (frame_strands.empty()) {
+        st = strand_stats(drawn);
+    } else {
+        Strands s = read_strands(frame_strands);
+        if (!keep_axes) {
+            const glm::mat3 r = hang_axis_rotation(strand_stats(s));
+            for (auto& p : s.points) p = r * p;
+        }
+        st = strand_stats(s);
+    }
+    return {glm::vec3(st.bbox_min), glm::vec3(st.bbox_max)};
+}
+
+Camera SceneOptions::camera_around(const std::pair<glm::vec3, glm::vec3>& box) const {
+    return Camera::orbit(box.first, box.second, static_cast<float>(radians(azimuth_deg)), static_cast<float>(radians(elevation_deg)),
+                         width, height, static_cast<float>(radians(fov_deg)));
 }
 
 }  // namespace coif::cli

@@ -145,6 +145,39 @@ TEST(Reference, IsolatedFibreMatchesTheLightingModuleBruteForce) {
     }
 }
 
+TEST(Reference, WithoutShadowsAnOccluderDoesNotDarkenTheFibre) {
+    // The fibre of single_fibre() and a parallel occluder 0.3 away towards a narrow light: with shadows the
+    // occluder blocks most of the light; with shadows off the fibre is lit exactly as if alone (same seed,
+    // same paths: no tolerance beyond float summation order, which is the same too).
+    const shading::HairParams p = shading::default_hair_params();
+    const MarschnerFiber fibre(p);
+    const FiberFrame f = fibre_frame_x();
+    SrbfLight light;
+    light.L = glm::vec3(1.0f);
+    light.omega = direction(-0.1f, 2.5f, f);
+    light.lambda = 0.1f;
+    const ReferenceEnvironment env = ReferenceEnvironment::from_srbf({light}, "one light");
+    Strands pair = single_fibre();
+    const glm::vec3 c = 0.3f * light.omega;
+    pair.add_strand({c - glm::vec3(1, 0, 0), c + glm::vec3(1, 0, 0)});
+    const glm::vec3 wo = direction(0.2f, 0.3f, f);
+    const auto trace = [&](const Strands& strands, bool shadows) {
+        ReferenceSettings s;
+        s.max_depth = 1;
+        s.fiber_radius = 0.05f;
+        s.progress = false;
+        s.shadows = shadows;
+        const ReferenceRenderer r(strands, env, fibre, s);
+        return r.trace(5.0f * wo, -wo, 4000, 3);
+    };
+    const glm::vec4 alone = trace(single_fibre(), true), shadowed = trace(pair, true), unshadowed = trace(pair, false);
+    std::printf("alone %.5f, occluded with shadows %.5f, without shadows %.5f (green)\n", alone.y, shadowed.y, unshadowed.y);
+    ASSERT_GT(alone.w, 0.99f);  // every path hits the fibre, not the occluder
+    ASSERT_GT(unshadowed.w, 0.99f);
+    EXPECT_LT(shadowed.y, 0.5f * alone.y);
+    for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(unshadowed[k], alone[k]) << "channel " << k;
+}
+
 TEST(Reference, MarschnerWhiteFurnace) {
     // A single fibre with σa = 0 under a constant unit environment. Two checks:
     //  1. The rendered radiance equals the fibre's directional albedo ∫ S cos θi dωi computed by quadrature
