@@ -59,7 +59,7 @@ struct StrandTimings {  // GPU time of the last draw, milliseconds (GL_TIME_ELAP
 };
 
 inline constexpr const char* kStrandRendererLabel =
-    "coif strand renderer: strands as GL lines, SRBF Marschner lighting per fragment, no shadows, coverage 2r/pixel";
+    "coif strand renderer: strands as GL lines lit by the SRBF Marschner lighting (no SATF, no shadows), coverage 2r/pixel";
 
 class StrandRenderer {
 public:

@@ -126,7 +126,8 @@ void add_render(CLI::App& root) {
             coif::gl::StrandRenderer renderer(strands);
             renderer.set_lights(lights);
             const coif::Image image = renderer.render(camera, settings);
-            wo.description = std::string(coif::gl::kStrandRendererLabel) + "; fibre radius " +
+            wo.description = std::string(coif::gl::kStrandRendererLabel) +
+                             (settings.per_fragment ? "; lighting per fragment" : "; lighting per segment end") + "; fibre radius " +
                              std::to_string(renderer.fiber_radius(settings)) + "; " + label + "; lights " + lights_label;
             coif::write_image(o->output, image, wo);
             std::fprintf(stderr,
