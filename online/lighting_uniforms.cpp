@@ -6,7 +6,8 @@ namespace coif::gl {
 
 bool same_lighting_tables(const shading::HairParams& a, const shading::LightingConfig& ca, const shading::HairParams& b,
                           const shading::LightingConfig& cb) {
-    return a.eta == b.eta && a.sigma_a == b.sigma_a && a.alpha_R == b.alpha_R && a.alpha_TT == b.alpha_TT &&
+    // σa is not compared: the dual-scattering tables span every σa (shaders/lighting/luts.glsl).
+    return a.eta == b.eta && a.alpha_R == b.alpha_R && a.alpha_TT == b.alpha_TT &&
            a.alpha_TRT == b.alpha_TRT && a.beta_R == b.beta_R && a.beta_TT == b.beta_TT && a.beta_TRT == b.beta_TRT &&
            a.ecc_a == b.ecc_a && a.w_c == b.w_c && a.delta_eta_p == b.delta_eta_p && a.d_b == b.d_b &&
            ca.segments == cb.segments && ca.paper_schlick == cb.paper_schlick && ca.paper_norm == cb.paper_norm &&

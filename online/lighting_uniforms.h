@@ -5,8 +5,7 @@
 //   - LightingTextures: the global tables (shading::global_lighting_tables) and the dual-scattering tables
 //     of one hair parameter set as textures, rebuilt only when the parameters change;
 //   - set_lighting_uniforms: u_hair.* and u_config.*.
-// Written once for the strand renderer (online/strand_renderer.h); the shell renderer's lighting pass
-// sets the same uniforms and can adopt it.
+// Used by the strand renderer (online/strand_renderer.h) and the shell renderer's lighting pass.
 #include <array>
 
 #include "online/gl.h"
@@ -19,7 +18,7 @@ inline constexpr std::array<const char*, shading::kLutCount> kLutUniformNames = 
     "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
     "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma", "lut_ms_af"};
 
-// True when (a, ca) and (b, cb) give the same dual-scattering tables (every field they read).
+// True when (a, ca) and (b, cb) give the same dual-scattering tables (every field they read; not σa).
 bool same_lighting_tables(const shading::HairParams& a, const shading::LightingConfig& ca, const shading::HairParams& b,
                           const shading::LightingConfig& cb);
 

@@ -17,6 +17,7 @@
 #include "models/strands.h"
 #include "models/style_strands.h"
 #include "offline/sector_generator.h"
+#include "online/lighting_uniforms.h"
 #include "online/shadow_grid.h"
 
 namespace coif::gl {
@@ -56,10 +57,6 @@ struct MeshRange {
     GLsizei vertex_count = 0;
 };
 
-constexpr std::array<const char*, shading::kLutCount> kLutNames = {
-    "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
-    "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma", "lut_ms_af"};
-
 glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
     const glm::mat3 r = glm::mat3_cast(glm::quat(s.rotation));
     glm::mat4 m(orientation * r * static_cast<float>(s.scale));
@@ -85,7 +82,7 @@ struct ShellRenderer::Impl {
     bool shadows_valid = false;
     float shadows_kappa = -1.0f;
     bool shadows_own = true;
-    std::array<Texture, shading::kLutCount> luts;
+    LightingTextures lighting_textures;  // the lighting module's tables (online/lighting_uniforms.h)
     std::vector<std::vector<MeshRange>> meshes;  // [prototype][layer]
     std::vector<std::size_t> cluster_proto;      // cluster → prototype slot
     std::vector<glm::vec3> cluster_centre;
@@ -99,9 +96,6 @@ struct ShellRenderer::Impl {
     std::unique_ptr<FragmentLists> lists;
     // The dual-scattering tables of the last parameter set.
     std::vector<GpuSample> cpu_samples;
-    bool have_ms = false;
-    shading::HairParams ms_params{};
-    shading::LightingConfig ms_config{};
 };
 
 glm::mat3 style_orientation(const HairStyle& style) {
@@ -366,10 +360,6 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
         glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
-    const shading::LightingTables& tables = shading::global_lighting_tables();
-    const shading::LutSet set = tables.set();
-    for (int i = 0; i < shading::kLutCount; ++i)
-        if (set.images[i]) m.luts[i] = make_lut_texture(*set.images[i]);
     GLuint q[2];
     glCreateQueries(GL_TIME_ELAPSED, 2, q);
     m.query_lighting = Query(q[0]);
@@ -468,57 +458,18 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = 0;
     if (!floor_only) {
-        const auto& a = m.ms_params;
-        const auto& b = s.hair;
-        const auto& ca = m.ms_config;
-        const auto& cb = s.config;
-        // The dual-scattering tables cover every σa (shaders/lighting/luts.glsl): σa is not compared.
-        const bool same = m.have_ms && a.eta == b.eta && a.alpha_R == b.alpha_R &&
-                          a.alpha_TT == b.alpha_TT && a.alpha_TRT == b.alpha_TRT && a.beta_R == b.beta_R &&
-                          a.beta_TT == b.beta_TT && a.beta_TRT == b.beta_TRT && a.ecc_a == b.ecc_a && a.w_c == b.w_c &&
-                          a.delta_eta_p == b.delta_eta_p && a.d_b == b.d_b && ca.segments == cb.segments &&
-                          ca.paper_schlick == cb.paper_schlick && ca.paper_norm == cb.paper_norm &&
-                          ca.paper_theta_gauss == cb.paper_theta_gauss && ca.paper_tt == cb.paper_tt;
-        if (!same) std::fprintf(stderr, "coif: building the dual-scattering tables of these hair parameters\n");
-        if (!same) {
-            const shading::LightingEvaluator ev(s.hair, s.config);  // validates, builds the dual-scattering tables
-            const shading::LutSet ms = ev.ms_tables().set();
-            for (int i = 0; i < shading::kLutCount; ++i)
-                if (ms.images[i]) m.luts[i] = make_lut_texture(*ms.images[i]);
-            m.ms_params = s.hair;
-            m.ms_config = s.config;
-            m.have_ms = true;
-        }
+        m.lighting_textures.update(s.hair, s.config);  // validates; rebuilds only on a change
         glBeginQuery(GL_TIME_ELAPSED, m.query_lighting.id());
         const GLuint prog = m.lighting.id();
         m.lighting.use();
-        for (int i = 0; i < shading::kLutCount; ++i) {
-            glBindTextureUnit(2 + i, m.luts[i].id());
-            glUniform1i(m.lighting.uniform(kLutNames[i]), 2 + i);
-        }
+        m.lighting_textures.bind(m.lighting, 2);
+        set_lighting_uniforms(m.lighting, s.hair, s.config);
         glUniform1i(m.lighting.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
         glUniform1i(m.lighting.uniform("u_rows"), m.lighting_rows);
         glUniform1i(m.lighting.uniform("u_light_count"), m.light_count);
         glUniform3fv(m.lighting.uniform("u_eye"), 1, &camera.eye.x);
         const auto f = [&](const char* n, float v) { glUniform1f(glGetUniformLocation(prog, n), v); };
         const auto i1 = [&](const char* n, int v) { glUniform1i(glGetUniformLocation(prog, n), v); };
-        f("u_hair.eta", s.hair.eta);
-        glUniform3fv(glGetUniformLocation(prog, "u_hair.sigma_a"), 1, &s.hair.sigma_a.x);
-        f("u_hair.alpha_R", s.hair.alpha_R);
-        f("u_hair.alpha_TT", s.hair.alpha_TT);
-        f("u_hair.alpha_TRT", s.hair.alpha_TRT);
-        f("u_hair.beta_R", s.hair.beta_R);
-        f("u_hair.beta_TT", s.hair.beta_TT);
-        f("u_hair.beta_TRT", s.hair.beta_TRT);
-        f("u_hair.ecc_a", s.hair.ecc_a);
-        f("u_hair.w_c", s.hair.w_c);
-        f("u_hair.delta_eta_p", s.hair.delta_eta_p);
-        f("u_hair.d_b", s.hair.d_b);
-        i1("u_config.segments", s.config.segments);
-        i1("u_config.paper_schlick", s.config.paper_schlick);
-        i1("u_config.paper_norm", s.config.paper_norm);
-        i1("u_config.paper_theta_gauss", s.config.paper_theta_gauss);
-        i1("u_config.paper_tt", s.config.paper_tt);
         i1("u_lobes", s.lobes);
         i1("u_multiple", s.multiple ? 1 : 0);
         i1("u_shadows", s.shadows && m.light_count > 0 ? 1 : 0);
