@@ -52,6 +52,12 @@ VertexArray make_vertex_array() {
     return VertexArray(id);
 }
 
+void float_attribute(GLuint vao, GLuint location, GLint components, std::size_t offset, GLuint binding) {
+    glEnableVertexArrayAttrib(vao, location);
+    glVertexArrayAttribFormat(vao, location, components, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
+    glVertexArrayAttribBinding(vao, location, binding);
+}
+
 std::string shader_text(const std::string& path) {
     const auto bytes = embedded::shader_file(path);
     if (!bytes) throw Error(path, "", "no such shader file compiled into coif");

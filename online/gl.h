@@ -48,6 +48,9 @@ using Query = Handle<delete_query>;
 
 Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
 VertexArray make_vertex_array();
+// Enables float attribute `location` of `vao`: `components` floats at `offset` in the vertex buffer
+// bound to `binding`.
+void float_attribute(GLuint vao, GLuint location, GLint components, std::size_t offset, GLuint binding);
 // A lighting table (shaders/lut.h) as an RGBA32F texture with linear filtering and clamped edges,
 // the sampling its C++ twin reproduces.
 Texture make_lut_texture(const shading::LutImage& image);

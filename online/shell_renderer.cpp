@@ -337,11 +337,7 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     glVertexArrayVertexBuffer(vao, 1, m.cluster_ids.id(), 0, sizeof(std::uint32_t));
     glVertexArrayBindingDivisor(vao, 1, 1);
     glVertexArrayElementBuffer(vao, m.indices.id());
-    const auto attrib = [&](GLuint loc, GLint n, std::size_t offset) {
-        glEnableVertexArrayAttrib(vao, loc);
-        glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
-        glVertexArrayAttribBinding(vao, loc, 0);
-    };
+    const auto attrib = [&](GLuint loc, GLint n, std::size_t offset) { float_attribute(vao, loc, n, offset, 0); };
     attrib(0, 3, offsetof(Vertex, position));
     attrib(1, 3, offsetof(Vertex, tangent));
     attrib(2, 3, offsetof(Vertex, normal));

@@ -31,12 +31,8 @@ StrandPreview::StrandPreview(const Strands& strands)
     const GLuint vao = vao_.id();
     glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
     glVertexArrayElementBuffer(vao, indices_.id());
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
-    glVertexArrayAttribBinding(vao, 0, 0);
-    glEnableVertexArrayAttrib(vao, 1);
-    glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, tangent));
-    glVertexArrayAttribBinding(vao, 1, 0);
+    float_attribute(vao, 0, 3, offsetof(Vertex, position), 0);
+    float_attribute(vao, 1, 3, offsetof(Vertex, tangent), 0);
     check_errors("StrandPreview upload");
 }
 
