@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -69,7 +70,6 @@ glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
 struct ShellRenderer::Impl {
     const SatfIndex* satf = nullptr;
     DiskLayout layout;
-    Program shade{{"shaders/gl/shell.vert", "shaders/gl/shell.frag"}};
     Program floor{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
     Program lighting{{"shaders/gl/shell_lighting.comp"}};
     Program shadow{{"shaders/gl/shell_shadow.comp"}};
@@ -87,16 +87,37 @@ struct ShellRenderer::Impl {
     std::vector<std::size_t> cluster_proto;      // cluster → prototype slot
     std::vector<glm::vec3> cluster_centre;
     int tiles_per_row = 1, atlas_w = 1, atlas_h = 1, views = 32, hrir_length = 32;
+    bool atlas_8bit = true;                                    // RGBA8 + per-channel range, else RGBA16F
+    glm::vec4 atlas_lo[3]{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};  // value = lo + scale · texel
+    glm::vec4 atlas_scale[3]{glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};
     int lighting_rows = 2;
     std::size_t sample_count = 0;
     int light_count = 0;
     Query query_lighting, query_shells;
+    // The shading programs, one per compile-time variant (shaders/gl/shell_shade.glsl), made on first use.
+    std::map<std::string, std::unique_ptr<Program>> shading_programs;
+    const Program& shading_program(bool abuffer, const ShellSettings& s);
     // Exact compositing (Compositing::exact, capture_fragments): made on first use.
-    std::unique_ptr<Program> abuffer;
     std::unique_ptr<FragmentLists> lists;
     // The dual-scattering tables of the last parameter set.
     std::vector<GpuSample> cpu_samples;
 };
+
+const Program& ShellRenderer::Impl::shading_program(bool abuffer, const ShellSettings& s) {
+    // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
+    // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
+    const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == layout.s_t * layout.mesh_t + 1 ? 1 : 0;
+    const std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
+                                           "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug)};
+    std::string key = abuffer ? "abuffer" : "blend";
+    for (const std::string& d : defines) key += "|" + d;
+    auto& slot = shading_programs[key];
+    if (!slot)
+        slot = std::make_unique<Program>(
+            std::vector<std::string>{"shaders/gl/shell.vert", abuffer ? "shaders/gl/shell_abuffer.frag" : "shaders/gl/shell.frag"},
+            defines);
+    return *slot;
+}
 
 glm::mat3 style_orientation(const HairStyle& style) {
     glm::dvec3 sum(0.0);
@@ -142,6 +163,12 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
                     "the record atlas (" + std::to_string(m.atlas_w) + "x" + std::to_string(m.atlas_h) +
                         ") exceeds this GPU's texture size " + std::to_string(max_tex));
     std::vector<glm::vec4> atlas(static_cast<std::size_t>(m.atlas_w) * m.atlas_h, glm::vec4(0.0f));
+    std::vector<std::uint8_t> atlas_part(atlas.size(), 0);  // which part (0, 1, 2) each texel belongs to
+    glm::vec4 part_lo[3], part_hi[3];
+    for (int part = 0; part < 3; ++part) {
+        part_lo[part] = glm::vec4(std::numeric_limits<float>::max());
+        part_hi[part] = glm::vec4(std::numeric_limits<float>::lowest());
+    }
     std::vector<float> mean_alpha(records), mean_a0(records);
     const int X = g.hrir_length, V = g.views;
     for (std::size_t rec = 0; rec < records; ++rec) {
@@ -167,16 +194,47 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
                         if (value == 0) texel[ch] = r[g.alpha_offset(v) + x];
                         else if (value <= 9) texel[ch] = r[g.re_offset(v, value - 1) + x];
                     }
-                    atlas[static_cast<std::size_t>(oy + py) * m.atlas_w + ox + px] = texel;
+                    const std::size_t at = static_cast<std::size_t>(oy + py) * m.atlas_w + ox + px;
+                    atlas[at] = texel;
+                    atlas_part[at] = static_cast<std::uint8_t>(part);
+                    part_lo[part] = glm::min(part_lo[part], texel);
+                    part_hi[part] = glm::max(part_hi[part], texel);
                 }
+        }
+    }
+    // Stored as 8-bit unorm texels with one affine range per channel of each part (value = lo + scale ·
+    // texel): bilinear filtering and the neighbour blend commute with the affine map, so the shader decodes
+    // once per sector. Half the memory of RGBA16F and llvmpipe's faster 8-bit filtering; the quantisation's
+    // effect on the image is in docs/renderer.md.
+    std::vector<std::uint8_t> atlas8;
+    if (m.atlas_8bit) {
+        for (int part = 0; part < 3; ++part) {
+            glm::vec4 lo = part_lo[part], hi = part_hi[part];
+            for (int ch = 0; ch < 4; ++ch)
+                if (!(hi[ch] > lo[ch])) hi[ch] = lo[ch] + 1.0f;  // a constant (or unused) channel
+            m.atlas_lo[part] = lo;
+            m.atlas_scale[part] = hi - lo;  // the fetch returns texel / 255
+        }
+        atlas8.resize(atlas.size() * 4);
+        for (std::size_t t = 0; t < atlas.size(); ++t) {
+            const int part = atlas_part[t];
+            for (int ch = 0; ch < 4; ++ch) {
+                const float u = (atlas[t][ch] - m.atlas_lo[part][ch]) / m.atlas_scale[part][ch] * 255.0f;
+                atlas8[t * 4 + ch] = static_cast<std::uint8_t>(std::clamp(std::lround(u), 0L, 255L));
+            }
         }
     }
     {
         GLuint id = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &id);
         m.atlas = Texture(id);
-        glTextureStorage2D(id, 1, GL_RGBA16F, m.atlas_w, m.atlas_h);
-        glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_FLOAT, atlas.data());
+        if (m.atlas_8bit) {
+            glTextureStorage2D(id, 1, GL_RGBA8, m.atlas_w, m.atlas_h);
+            glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_UNSIGNED_BYTE, atlas8.data());
+        } else {
+            glTextureStorage2D(id, 1, GL_RGBA16F, m.atlas_w, m.atlas_h);
+            glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_FLOAT, atlas.data());
+        }
         glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -453,31 +511,33 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     if (s.timed) glFinish();
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = 0;
-    if (!floor_only) {
-        m.lighting_textures.update(s.hair, s.config);  // validates; rebuilds only on a change
-        glBeginQuery(GL_TIME_ELAPSED, m.query_lighting.id());
-        const GLuint prog = m.lighting.id();
-        m.lighting.use();
-        m.lighting_textures.bind(m.lighting, 2);
-        set_lighting_uniforms(m.lighting, s.hair, s.config);
-        glUniform1i(m.lighting.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
-        glUniform1i(m.lighting.uniform("u_rows"), m.lighting_rows);
-        glUniform1i(m.lighting.uniform("u_light_count"), m.light_count);
-        glUniform3fv(m.lighting.uniform("u_eye"), 1, &camera.eye.x);
-        const auto f = [&](const char* n, float v) { glUniform1f(glGetUniformLocation(prog, n), v); };
-        const auto i1 = [&](const char* n, int v) { glUniform1i(glGetUniformLocation(prog, n), v); };
-        i1("u_lobes", s.lobes);
-        i1("u_multiple", s.multiple ? 1 : 0);
-        i1("u_shadows", s.shadows && m.light_count > 0 ? 1 : 0);
-        i1("u_absorption_on", m.absorption_on ? 1 : 0);
+    // What the lighting pass and the per-fragment lighting reference (ShellSettings::lighting_per_fragment)
+    // read: the lighting module's tables and parameters, the lights, their shadows, the painted σa.
+    const auto set_light_uniforms = [&](const Program& prog) {
+        m.lighting_textures.bind(prog, 2);
+        set_lighting_uniforms(prog, s.hair, s.config);
+        glUniform1i(prog.uniform("u_light_count"), m.light_count);
+        glUniform1i(prog.uniform("u_lobes"), s.lobes);
+        glUniform1i(prog.uniform("u_multiple"), s.multiple ? 1 : 0);
+        glUniform1i(prog.uniform("u_shadows"), s.shadows && m.light_count > 0 ? 1 : 0);
+        glUniform1i(prog.uniform("u_absorption_on"), m.absorption_on ? 1 : 0);
         if (m.absorption_on) {
             glBindTextureUnit(2 + shading::kLutCount, m.absorption.id());
-            i1("u_absorption", 2 + shading::kLutCount);
+            glUniform1i(prog.uniform("u_absorption"), 2 + shading::kLutCount);
         }
-        f("u_d_f", s.d_f);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
+        glUniform1f(prog.uniform("u_d_f"), s.d_f);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.shadows.id());
+    };
+    if (!floor_only) m.lighting_textures.update(s.hair, s.config);  // validates; rebuilds only on a change
+    if (!floor_only) {
+        glBeginQuery(GL_TIME_ELAPSED, m.query_lighting.id());
+        m.lighting.use();
+        set_light_uniforms(m.lighting);
+        glUniform1i(m.lighting.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
+        glUniform1i(m.lighting.uniform("u_rows"), m.lighting_rows);
+        glUniform3fv(m.lighting.uniform("u_eye"), 1, &camera.eye.x);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.samples.id());
         glBindImageTexture(0, m.lighting_tex.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glDispatchCompute(static_cast<GLuint>((m.sample_count + 31) / 32), 1, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -492,12 +552,9 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
 
     // ---- shells ------------------------------------------------------------------------------------
     const bool exact = !floor_only && s.compositing == Compositing::exact;
-    if (exact && !m.abuffer) {
-        m.abuffer = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell.vert", "shaders/gl/shell_abuffer.frag"});
-        m.lists = std::make_unique<FragmentLists>();
-    }
+    if (exact && !m.lists) m.lists = std::make_unique<FragmentLists>();
     glBeginQuery(GL_TIME_ELAPSED, m.query_shells.id());
-    const Program& prog = floor_only ? m.floor : exact ? *m.abuffer : m.shade;
+    const Program& prog = floor_only ? m.floor : m.shading_program(exact, s);
     prog.use();
     const glm::mat4 vp = camera.projection() * camera.view();
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
@@ -509,17 +566,18 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         glUniform1i(prog.uniform("u_tiles_per_row"), m.tiles_per_row);
         glUniform2f(prog.uniform("u_atlas_inv_size"), 1.0f / m.atlas_w, 1.0f / m.atlas_h);
         glUniform1i(prog.uniform("u_views"), m.views);
+        glUniform4fv(prog.uniform("u_atlas_lo"), 3, &m.atlas_lo[0].x);
+        glUniform4fv(prog.uniform("u_atlas_scale"), 3, &m.atlas_scale[0].x);
         glUniform1i(prog.uniform("u_hrir_length"), m.hrir_length);
         glUniform1i(prog.uniform("u_lighting_rows"), m.lighting_rows);
         glUniform1i(prog.uniform("u_lighting_height"), static_cast<GLint>(m.cluster_proto.size() * kLightingTexels));
         glUniform1i(prog.uniform("u_s_t"), L.s_t);
         glUniform1i(prog.uniform("u_s_u"), L.s_u);
         glUniform1i(prog.uniform("u_layers"), L.layers);
-        glUniform1i(prog.uniform("u_neighbours"), s.neighbours);
         glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
         glUniform1f(prog.uniform("u_re_scale"), 1.0f / stats_.re_norm);
         glUniform3fv(prog.uniform("u_eye"), 1, &camera.eye.x);
-        glUniform1i(prog.uniform("u_debug"), s.debug);
+        if (s.lighting_per_fragment) set_light_uniforms(prog);
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.instances.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m.sectors.id());
@@ -682,7 +740,7 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     static const std::vector<std::string> known = {
         "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
         "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "compositing",
-        "shadows", "own_cluster_shadow", "kappa_between", "d_f"};
+        "shadows", "own_cluster_shadow", "kappa_between", "d_f", "lighting_per_fragment"};
     for (const auto& [key, value] : j.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
             throw Error(path, "JSON /" + key, "unknown parameter (known: eta, sigma_a, alpha_R_deg, beta_R_deg, …)");
@@ -752,6 +810,10 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (j.contains("own_cluster_shadow")) {
         if (!j["own_cluster_shadow"].is_boolean()) throw Error(path, "JSON /own_cluster_shadow", "expected true or false");
         s.own_cluster_shadow = j["own_cluster_shadow"].get<bool>();
+    }
+    if (j.contains("lighting_per_fragment")) {
+        if (!j["lighting_per_fragment"].is_boolean()) throw Error(path, "JSON /lighting_per_fragment", "expected true or false");
+        s.lighting_per_fragment = j["lighting_per_fragment"].get<bool>();
     }
     if (j.contains("shadows")) {
         if (!j["shadows"].is_boolean()) throw Error(path, "JSON /shadows", "expected true or false");

@@ -35,7 +35,8 @@
 // Painted absorption: an optional σa per cluster and lighting row (models/absorption_map.h) in a texture
 // that the lighting pass reads instead of the settings' σa.
 //
-// Not yet: AOVs.
+// The shading is compiled per variant (records per sector, where the lighting is read, debug views):
+// llvmpipe runs every branch of a shader under masks, so switches are #defines, not uniforms.
 //
 // Conventions: world is y-up centimetres after `orientation` (the style's hang axis turned to −y,
 // as the strand preview does); light directions point towards the light; the camera is coif::Camera.
@@ -80,6 +81,10 @@ struct ShellSettings {
     int samples = 4;                // MSAA samples of the offscreen target (the exact compositing is 1 sample)
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re), 4 shadow AOV
+    // Decision 3's reference: every light evaluated per fragment (its own T, V and radial axis, re at each
+    // light's own azimuth; shadows interpolated between lighting samples) instead of the per-sample Fourier
+    // sums. ~40× the shading cost: for error figures (docs/renderer.md), not for frames.
+    bool lighting_per_fragment = false;
     bool timed = false;             // glFinish around each pass and wall-clock timings (benchmarks; see ShellTimings)
 };
 // Reads a parameters file (JSON object; every key optional; degrees for angles):
@@ -87,7 +92,7 @@ struct ShellSettings {
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
 //    "debug": 0..4 (ShellSettings::debug), "compositing": "exact" | "sorted" | "unsorted", "shadows": true,
-//    "own_cluster_shadow": true, "kappa_between", "d_f"}
+//    "own_cluster_shadow": true, "kappa_between", "d_f", "lighting_per_fragment": false}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});

@@ -1,5 +1,7 @@
 // Layer meshes of the SATF shells (online/shell_renderer.h). One draw per (cluster, layer, facing);
 // the cluster is the instance (attribute 5, divisor 1, selected by the draw's base instance).
+// SHELL_LIGHTING == 1: the lighting pass's sums are read here, per vertex, and interpolated (the
+// lighting rows are the mesh rows, so this equals reading them per fragment; docs/renderer.md).
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_tangent;
 layout(location = 2) in vec3 a_normal;
@@ -22,6 +24,17 @@ out vec3 v_axis_normal;
 out vec2 v_texcoord;
 flat out uvec2 v_info;
 
+#if defined(SHELL_LIGHTING) && SHELL_LIGHTING == 1
+#include "shaders/gl/shell_lighting_fetch.glsl"
+out vec4 v_L0;
+out vec4 v_L1;
+out vec4 v_L2;
+out vec4 v_L3;
+out vec4 v_L4;
+out vec4 v_L5;
+out vec4 v_L6;
+#endif
+
 void main() {
     ShellInstance inst = instances[a_cluster];
     vec4 world = inst.model * vec4(a_position, 1.0);
@@ -32,5 +45,14 @@ void main() {
     v_axis_normal = rot * a_axis_normal;
     v_texcoord = a_texcoord;
     v_info = inst.info.xy;
+#if defined(SHELL_LIGHTING) && SHELL_LIGHTING == 1
+    v_L0 = lighting_fetch(a_texcoord.y, inst.info.y, 0);
+    v_L1 = lighting_fetch(a_texcoord.y, inst.info.y, 1);
+    v_L2 = lighting_fetch(a_texcoord.y, inst.info.y, 2);
+    v_L3 = lighting_fetch(a_texcoord.y, inst.info.y, 3);
+    v_L4 = lighting_fetch(a_texcoord.y, inst.info.y, 4);
+    v_L5 = lighting_fetch(a_texcoord.y, inst.info.y, 5);
+    v_L6 = lighting_fetch(a_texcoord.y, inst.info.y, 6);
+#endif
     gl_Position = u_view_projection * world;
 }

@@ -9,9 +9,7 @@
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
 // 27 floats in 7 RGBA32F texels per sample: texel (row, cluster · 7 + m); the 28th float is the
 // sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV).
-#include "shaders/lighting/luts_gl.glsl"
-#include "shaders/lighting/srbf_shadowed.glsl"
-#include "shaders/gl/sector_frame.glsl"
+#include "shaders/gl/shell_light.glsl"
 
 layout(local_size_x = 32) in;
 
@@ -21,26 +19,11 @@ struct LightingSample {
     vec4 normal;
 };
 layout(std430, binding = 2) readonly buffer Samples { LightingSample samples[]; };
-struct GpuLight {
-    vec4 direction_lambda;  // xyz towards the light (unit), w = λ_j
-    vec4 radiance;          // rgb = L_j
-};
-layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
-layout(std430, binding = 4) readonly buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
 layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
 
 uniform int u_sample_count;
 uniform int u_rows;
-uniform int u_light_count;
 uniform vec3 u_eye;
-uniform HairParams u_hair;
-uniform LightingConfig u_config;
-uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT
-uniform int u_multiple;  // dual scattering on/off
-uniform int u_shadows;   // shadows between clusters on/off
-uniform int u_absorption_on;     // painted absorption (models/absorption_map.h) on/off
-uniform sampler2D u_absorption;  // σa per lighting sample: texel (row, cluster), RGB32F
-uniform float u_d_f;     // Zinke's forward density factor d_f
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
@@ -66,25 +49,11 @@ void main() {
     float visible = 0.0;  // Σ_j lum(L_j) T̃_j and Σ_j lum(L_j): the sample's unoccluded fraction (shadow AOV)
     float total = 0.0;
     for (int j = 0; j < u_light_count; ++j) {
-        vec3 l = lights[j].direction_lambda.xyz;
-        float lambda_j = lights[j].direction_lambda.w;
-        float theta_j;
-        float phi_j;
-        hair_angles(l, T, r0, w, theta_j, phi_j);
         vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
-        vec3 m = vec3(0.0);
-        if (sh.x > MS_NEGLIGIBLE)
-            m = sh.x * srbf_single_lobes(hp, u_config, f0123, f45, u_lobes, theta_o, phi_o, theta_j, phi_j, lambda_j);
-        if (u_multiple != 0)
-            m += srbf_shadowed_multiple(hp, u_config, f0123, f45, u_d_f, theta_o, phi_o, theta_j, phi_j, lambda_j,
-                                        sh.x, sh.y);
-        vec3 wj = lights[j].radiance.rgb * m;
-        float lum = dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722));
-        visible += lum * sh.x;
-        total += lum;
+        vec3 wj = shell_light_weight(hp, f0123, f45, theta_o, phi_o, T, r0, w, j, sh, visible, total);
+        vec3 l = lights[j].direction_lambda.xyz;
         float psi = sector_azimuth(l, T, r0);
-        float proj = length(l - dot(l, T) * T);
-        float lp = lambda_j / max(proj, 1e-3);
+        float lp = shell_light_spread(j, T);
         C[0] += wj;
         for (int k = 1; k <= 4; ++k) {
             float d = exp(-float(k * k) * lp * lp * 0.25);

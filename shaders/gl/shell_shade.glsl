@@ -13,12 +13,46 @@
 //   output   premultiplied: re already carries the coverage (planar tracer, 004 eq. 5), so the
 //            colour is lighting · re / re_norm · τ and the blend is (ONE, ONE_MINUS_SRC_ALPHA).
 //
+// Compile-time variants (online/shell_renderer.cpp builds one program per set; llvmpipe runs every
+// branch of a shader under masks, so a uniform switch costs its whole code in every fragment):
+//   SHELL_NEIGHBOURS  records blended per sector, 1..4
+//   SHELL_LIGHTING    0: the lighting sums fetched per fragment (any number of lighting rows);
+//                     1: fetched per vertex by shell.vert and interpolated (rows = mesh rows; the same values);
+//                     2: the per-fragment, per-light reference of decision 3: every light's weight evaluated
+//                        at this fragment (its own T, V and radial axis; T̃, n interpolated between the
+//                        lighting samples along t) times re at that light's own azimuth
+//   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV
+//
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
 #ifndef COIF_SHADERS_GL_SHELL_SHADE_GLSL
 #define COIF_SHADERS_GL_SHELL_SHADE_GLSL
 
 #include "shaders/gl/sector_frame.glsl"
+
+#ifndef SHELL_NEIGHBOURS
+#define SHELL_NEIGHBOURS 2
+#endif
+#ifndef SHELL_LIGHTING
+#define SHELL_LIGHTING 1
+#endif
+#ifndef SHELL_DEBUG
+#define SHELL_DEBUG 0
+#endif
+
+#if SHELL_LIGHTING == 2
+#include "shaders/gl/shell_light.glsl"
+#endif
+#include "shaders/gl/shell_lighting_fetch.glsl"
+#if SHELL_LIGHTING == 1
+in vec4 v_L0;
+in vec4 v_L1;
+in vec4 v_L2;
+in vec4 v_L3;
+in vec4 v_L4;
+in vec4 v_L5;
+in vec4 v_L6;
+#endif
 
 struct ShellSector {
     uvec4 id;      // nearest records, best first
@@ -27,24 +61,20 @@ struct ShellSector {
 };
 layout(std430, binding = 1) readonly buffer Sectors { ShellSector sectors[]; };
 
-uniform sampler2D u_records;       // record atlas (RGBA16F): per record 3 tiles of views × X texels + 1 border
+uniform sampler2D u_records;       // record atlas: per record 3 tiles of views × X texels + 1 border
+uniform vec4 u_atlas_lo[3];        // per tile part and channel: value = lo + scale · texel (RGBA8 atlas;
+uniform vec4 u_atlas_scale[3];     // lo = 0, scale = 1 for RGBA16F)
 uniform int u_tiles_per_row;
 uniform vec2 u_atlas_inv_size;
 uniform int u_views;
 uniform int u_hrir_length;
-uniform sampler2D u_lighting;      // C_k, S_k per lighting sample: x = row along t, y = cluster · 7 + texel
-uniform int u_lighting_rows;
-uniform int u_lighting_height;
 uniform int u_s_t;
 uniform int u_s_u;
 uniform int u_layers;
 uniform int u_layer;
-uniform int u_neighbours;
 uniform float u_kappa_shadow;
 uniform float u_re_scale;          // 1 / re_norm
 uniform vec3 u_eye;
-uniform int u_debug;               // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re),
-                                   // 4 shadow: the lighting's unoccluded fraction · τ · α (the shadow AOV)
 
 const float TWO_PI = 6.28318530718;
 
@@ -55,7 +85,7 @@ vec4 atlas_fetch(uint tile, vec2 p) {
     return textureLod(u_records, (origin + p) * u_atlas_inv_size, 0.0);
 }
 
-// α and the 9 re coefficients of one sector at atlas position p, as three vec4:
+// α and the 9 re coefficients of one sector at atlas position p (its SHELL_NEIGHBOURS best records), as three vec4:
 // t0 = (α, a0, a1, b1), t1 = (a2, b2, a3, b3), t2 = (a4, b4, 0, 0). No arrays: llvmpipe spills them.
 void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
     ShellSector s = sectors[sector];
@@ -63,7 +93,7 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
     t1 = vec4(0.0);
     t2 = vec4(0.0);
     float wsum = 0.0;
-    for (int n = 0; n < u_neighbours; ++n) {
+    for (int n = 0; n < SHELL_NEIGHBOURS; ++n) {
         float w = s.weight[n];
         uint base = s.id[n] * 3u;
         t0 += w * atlas_fetch(base, p);
@@ -72,13 +102,9 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
         wsum += w;
     }
     float inv = wsum > 0.0 ? 1.0 / wsum : 0.0;
-    t0 *= inv;
-    t1 *= inv;
-    t2 *= inv;
-}
-
-vec4 lighting_fetch(float lx, float ly0, int m) {
-    return textureLod(u_lighting, vec2(lx, (ly0 + float(m)) / float(u_lighting_height)), 0.0);
+    t0 = u_atlas_lo[0] + u_atlas_scale[0] * (t0 * inv);
+    t1 = u_atlas_lo[1] + u_atlas_scale[1] * (t1 * inv);
+    t2 = u_atlas_lo[2] + u_atlas_scale[2] * (t2 * inv);
 }
 
 vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info) {
@@ -110,33 +136,90 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     float alpha = clamp(t0.x, 0.0, 1.0);
     float tau = exp(-u_kappa_shadow * mix(sectors[top].shadow.x, sectors[bottom].shadow.x, gamma));
 
-    if (u_debug == 1) return vec4(vec3(alpha), alpha);
-    if (u_debug == 2) return vec4(vec3(max(t0.y, 0.0) * u_re_scale * tau), alpha);
+#if SHELL_DEBUG == 1
+    return vec4(vec3(alpha), alpha);
+#elif SHELL_DEBUG == 2
+    return vec4(vec3(max(t0.y, 0.0) * u_re_scale * tau), alpha);
+#endif
 
+#if SHELL_LIGHTING == 2
+    // Every light at this fragment: its weight in the fragment's own frame (T, r, T × r), shadowed by
+    // (T̃, n) interpolated between the two lighting samples around t, times re at the light's own
+    // in-plane azimuth θl = the light's azimuth from r: re(θl) = a0 + Σ_k d_k (a_k cos kθl + b_k sin kθl).
+    float tr = clamp(texcoord.y, 0.0, 1.0) * float(u_lighting_rows - 1);
+    int row = min(int(tr), u_lighting_rows - 2);
+    float f = tr - float(row);
+    int first = int(info.y) * u_lighting_rows + row;
+    HairParams hp = u_hair;
+    if (u_absorption_on != 0)
+        hp.sigma_a = mix(texelFetch(u_absorption, ivec2(row, int(info.y)), 0).rgb,
+                         texelFetch(u_absorption, ivec2(row + 1, int(info.y)), 0).rgb, f);
+    vec3 w = cross(T, r);
+    float theta_o;
+    float phi_o;
+    hair_angles(V, T, r, w, theta_o, phi_o);
+    vec4 f0123;
+    vec4 f45;
+    srbf_point_setup(hp, u_config, f0123, f45);
+    vec3 lit = vec3(0.0);
+    vec3 C0 = vec3(0.0);
+    float visible = 0.0;
+    float total = 0.0;
+    for (int j = 0; j < u_light_count; ++j) {
+        vec2 sh = vec2(1.0, 0.0);
+        if (u_shadows != 0)
+            sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
+        vec3 wj = shell_light_weight(hp, f0123, f45, theta_o, phi_o, T, r, w, j, sh, visible, total);
+        float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
+        float lp = shell_light_spread(j, T);
+        float d1 = exp(-0.25 * lp * lp);
+        float d2 = d1 * d1 * d1 * d1;
+        float d3 = d2 * d2 * d1;
+        float d4 = d2 * d2 * d2 * d2;
+        float re = t0.y + d1 * (t0.z * cos(th) + t0.w * sin(th)) + d2 * (t1.x * cos(2.0 * th) + t1.y * sin(2.0 * th)) +
+                   d3 * (t1.z * cos(3.0 * th) + t1.w * sin(3.0 * th)) + d4 * (t2.x * cos(4.0 * th) + t2.y * sin(4.0 * th));
+        lit += wj * re;
+        C0 += wj;
+    }
+#if SHELL_DEBUG == 3
+    return vec4(C0 * alpha * tau, alpha);
+#elif SHELL_DEBUG == 4
+    return vec4(vec3((total > 0.0 ? visible / total : 1.0) * tau * alpha), alpha);
+#endif
+    return vec4(max(lit, vec3(0.0)) * u_re_scale * tau, alpha);
+#else
     // Lighting coefficients at this t (linear between lighting rows), turned to this fragment's r.
     // Texels: L0 = (C0.rgb, C1.r), L1 = (C1.gb, S1.rg), L2 = (S1.b, C2.rgb), L3 = (S2.rgb, C3.r),
     //         L4 = (C3.gb, S3.rg), L5 = (S3.b, C4.rgb), L6 = (S4.rgb, V) with V the sample's unoccluded
     //         fraction of the light (Σ_j lum L_j T̃_j / Σ_j lum L_j).
-    float lx = (clamp(texcoord.y, 0.0, 1.0) * float(u_lighting_rows - 1) + 0.5) / float(u_lighting_rows);
-    float ly0 = float(info.y * 7u) + 0.5;
-    vec4 L0 = lighting_fetch(lx, ly0, 0);
-    vec4 L1 = lighting_fetch(lx, ly0, 1);
-    vec4 L2 = lighting_fetch(lx, ly0, 2);
-    vec4 L3 = lighting_fetch(lx, ly0, 3);
-    vec4 L4 = lighting_fetch(lx, ly0, 4);
-    vec4 L5 = lighting_fetch(lx, ly0, 5);
-    vec4 L6 = lighting_fetch(lx, ly0, 6);
+#if SHELL_LIGHTING == 1
+    vec4 L0 = v_L0, L1 = v_L1, L2 = v_L2, L3 = v_L3, L4 = v_L4, L5 = v_L5, L6 = v_L6;
+#else
+    vec4 L0 = lighting_fetch(texcoord.y, info.y, 0);
+    vec4 L1 = lighting_fetch(texcoord.y, info.y, 1);
+    vec4 L2 = lighting_fetch(texcoord.y, info.y, 2);
+    vec4 L3 = lighting_fetch(texcoord.y, info.y, 3);
+    vec4 L4 = lighting_fetch(texcoord.y, info.y, 4);
+    vec4 L5 = lighting_fetch(texcoord.y, info.y, 5);
+    vec4 L6 = lighting_fetch(texcoord.y, info.y, 6);
+#endif
     vec3 C0 = L0.xyz;
-    if (u_debug == 3) return vec4(C0 * alpha * tau, alpha);
-    if (u_debug == 4) return vec4(vec3(L6.w * tau * alpha), alpha);
+#if SHELL_DEBUG == 3
+    return vec4(C0 * alpha * tau, alpha);
+#elif SHELL_DEBUG == 4
+    return vec4(vec3(L6.w * tau * alpha), alpha);
+#endif
     vec3 C1 = vec3(L0.w, L1.xy), S1 = vec3(L1.zw, L2.x);
     vec3 C2 = L2.yzw, S2 = L3.xyz;
     vec3 C3 = vec3(L3.w, L4.xy), S3 = vec3(L4.zw, L5.x);
     vec3 C4 = L5.yzw, S4 = L6.xyz;
     vec3 r0 = axis_normal - dot(axis_normal, T) * T;
-    float psi_r = sector_azimuth(r, T, normalize(r0));
+    // ψr = sector_azimuth(r, T, r0) without the angle: (cos ψr, sin ψr) = (r · r0, r · (T × r0)), both unit ⟂ T.
     // Σ_j w_j cos h(ψj − ψr) = C_h cos hψr + S_h sin hψr;  Σ_j w_j sin h(ψj − ψr) = S_h cos hψr − C_h sin hψr.
-    vec2 e1 = vec2(cos(psi_r), sin(psi_r));
+    r0 = normalize(r0);
+    vec2 e1 = vec2(dot(r, r0), dot(r, cross(T, r0)));
+    float e1_len = length(e1);
+    e1 = e1_len > 1e-6 ? e1 / e1_len : vec2(1.0, 0.0);
     vec2 e2 = vec2(e1.x * e1.x - e1.y * e1.y, 2.0 * e1.x * e1.y);
     vec2 e3 = vec2(e2.x * e1.x - e2.y * e1.y, e2.x * e1.y + e2.y * e1.x);
     vec2 e4 = vec2(e2.x * e2.x - e2.y * e2.y, 2.0 * e2.x * e2.y);
@@ -146,6 +229,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
     sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
     return vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);
+#endif
 }
 
 #endif  // COIF_SHADERS_GL_SHELL_SHADE_GLSL
