@@ -131,7 +131,7 @@ glm::mat3 style_orientation(const HairStyle& style) {
 }
 
 ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
-                             int lighting_rows_per_hsv)
+                             int lighting_rows_per_hsv, Strands* sampled_strands)
     : impl_(std::make_unique<Impl>()) {
     const auto start = std::chrono::steady_clock::now();
     Impl& m = *impl_;
@@ -360,9 +360,10 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     // ---- shadow grid (decision 5) ----------------------------------------------------------------------
     {
         StrandSampling sampling;
-        const Strands strands = sample_strands(style, sampling);
+        Strands strands = sample_strands(style, sampling);
         stats_.shadow_strands = strands.strand_count();
         m.grid = voxelize_strands(strands, orientation, L.gaussian_width, kShadowGridSize);
+        if (sampled_strands) *sampled_strands = std::move(strands);
         m.db_kappa = static_cast<float>(db.params().tracer.kappa);
         stats_.grid_x = m.grid.dims.x;
         stats_.grid_y = m.grid.dims.y;

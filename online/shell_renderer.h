@@ -51,6 +51,7 @@
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "models/hair_style.h"
+#include "models/strands.h"
 #include "offline/srbf_lights.h"
 #include "online/fragment_lists.h"
 #include "online/gl.h"
@@ -125,7 +126,10 @@ class ShellRenderer {
 public:
     // Needs a current GL 4.5 context. `satf` (and its database) must outlive the renderer.
     // `lighting_rows_per_hsv`: lighting samples per HSV along t (0: the layout's mesh_t, one per mesh row).
-    ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation, int lighting_rows_per_hsv = 0);
+    // `sampled_strands`, if given, receives the strands sampled for the shadow grid (models/style_strands.h,
+    // StrandSampling{}; the style's axes, not turned by `orientation`), so that a caller need not sample again.
+    ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation, int lighting_rows_per_hsv = 0,
+                  Strands* sampled_strands = nullptr);
     ~ShellRenderer();
     ShellRenderer(const ShellRenderer&) = delete;
     ShellRenderer& operator=(const ShellRenderer&) = delete;

@@ -1,6 +1,5 @@
 // coif bench compositing — decision 4's figures: every compositing mode of the shell renderer against the
 // exact CPU compositing of the same fragments (online/fragment_lists.h), with its GPU cost.
-#include <algorithm>
 #include <memory>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -30,11 +29,6 @@ struct Row {
     int samples;
 };
 
-double median(std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-}
-
 void add_bench_compositing(CLI::App& root) {
     CLI::App* bench = coif::cli::noun(root, "bench", "Benchmarks that print figures (JSON with --json, else a table)");
     auto o = std::make_shared<BenchCompositingOptions>();
@@ -60,15 +54,9 @@ void add_bench_compositing(CLI::App& root) {
     cmd->callback([o] {
         coif::gl::ShellSettings base;
         if (!o->params.empty()) base = coif::gl::read_shell_settings(o->params, base);
-        std::string lights_label;
-        const auto lights = coif::cli::load_render_lights(o->env, &lights_label);
-        const coif::HairStyle style = coif::cli::load_style(o->scene.style);
-        const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
-        const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
-        auto context = coif::gl::Context::headless();
-        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style), o->lighting_rows);
-        renderer.set_lights(lights);
-        const coif::Camera cam = coif::cli::shell_camera(o->scene, renderer);
+        coif::cli::ShellScene scene(o->scene, coif::cli::read_scene_inputs(o->scene, o->env), o->db, o->lighting_rows);
+        coif::gl::ShellRenderer& renderer = *scene.renderer;
+        const coif::Camera& cam = scene.camera;
 
         const coif::gl::FragmentCapture capture = renderer.capture_fragments(cam, base);
         if (capture.dropped > 0)
@@ -83,7 +71,7 @@ void add_bench_compositing(CLI::App& root) {
                                  {"exact (GPU lists)", coif::gl::Compositing::exact, 1}};
         if (o->msaa > 1) rows.push_back({"sorted", coif::gl::Compositing::sorted, o->msaa});
         nlohmann::ordered_json out = {
-            {"renderer", context->renderer()}, {"width", cam.width}, {"height", cam.height},
+            {"renderer", scene.context->renderer()}, {"width", cam.width}, {"height", cam.height},
             {"fragments", depth.fragments}, {"hair_pixels", depth.covered_pixels},
             {"fragments_per_pixel_mean_all", depth.mean_all}, {"fragments_per_pixel_mean_hair", depth.mean_covered},
             {"fragments_per_pixel_max", depth.max}, {"resolve_limit", coif::gl::kResolveFragments},
@@ -119,7 +107,8 @@ void add_bench_compositing(CLI::App& root) {
             out["peak"] = e.peak;
             out["modes"].push_back({{"mode", rows[i].name}, {"samples", rows[i].samples}, {"psnr_hair_db", e.psnr_hair_db},
                                     {"psnr_all_db", e.psnr_all_db}, {"rms_hair", e.rms_hair}, {"max_abs", e.max_abs},
-                                    {"gpu_shells_ms", median(shells_ms[i])}, {"gpu_resolve_ms", median(resolve_ms[i])}});
+                                    {"gpu_shells_ms", coif::cli::median(shells_ms[i])},
+                                    {"gpu_resolve_ms", coif::cli::median(resolve_ms[i])}});
         }
         if (o->msaa > 1) {  // MSAA's own effect: sorted at --msaa samples against sorted at 1
             const coif::gl::CompositingError e = coif::gl::compositing_error(images[0], images.back(), capture);
@@ -130,7 +119,8 @@ void add_bench_compositing(CLI::App& root) {
             std::printf("%s\n", out.dump(2).c_str());
             return;
         }
-        std::printf("renderer   %s, %dx%d, %zu lights\n", context->renderer().c_str(), cam.width, cam.height, lights.size());
+        std::printf("renderer   %s, %dx%d, %zu lights\n", scene.context->renderer().c_str(), cam.width, cam.height,
+                    scene.lights.size());
         std::printf("fragments  %llu on %zu hair pixels: %.1f per hair pixel (%.1f over the image), max %zu; %zu pixels over "
                     "the GPU resolve's %d\n",
                     static_cast<unsigned long long>(depth.fragments), depth.covered_pixels, depth.mean_covered, depth.mean_all,

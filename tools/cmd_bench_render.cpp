@@ -48,8 +48,7 @@ FrameStats measure(coif::gl::ShellRenderer& r, const coif::Camera& cam, const co
     const auto med = [&](auto field) {
         std::vector<double> v;
         for (const FrameStats& x : all) v.push_back(x.*field);
-        std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-        return v[v.size() / 2];
+        return coif::cli::median(std::move(v));
     };
     return {med(&FrameStats::wall_ms), med(&FrameStats::lighting_ms), med(&FrameStats::shells_ms)};
 }
@@ -86,10 +85,8 @@ void add_bench_render(CLI::App& root) {
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
         settings.timed = true;  // wall-clock per pass between glFinish calls (llvmpipe's timer queries misattribute)
-        std::string lights_label;
-        const auto lights = coif::cli::load_render_lights(o->env, &lights_label);
-        std::vector<BenchScene> scenes;
-        scenes.push_back({o->scene.style, coif::cli::load_style(o->scene.style), 0.0});
+        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
+        std::vector<BenchScene> models;
         if (o->models) {
             namespace fs = std::filesystem;
             std::vector<fs::path> files;
@@ -107,17 +104,14 @@ void add_bench_render(CLI::App& root) {
                 fit.progress = false;
                 BenchScene sc{f.filename().string(), coif::fit_style(coif::read_strands(f), fit), 0.0};
                 sc.fit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                scenes.push_back(std::move(sc));
+                models.push_back(std::move(sc));
             }
         }
-        const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
-        const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
-        auto context = coif::gl::Context::headless();
+        // The --style scene; its camera (around the style's strands) frames the models too.
+        coif::cli::ShellScene scene(o->scene, std::move(inputs), o->db, o->lighting_rows);
+        const coif::Camera& cam = scene.camera;
         nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-        for (const BenchScene& sc : scenes) {
-            coif::gl::ShellRenderer renderer(sc.style, satf, coif::gl::style_orientation(sc.style), o->lighting_rows);
-            renderer.set_lights(lights);
-            const coif::Camera cam = coif::cli::shell_camera(o->scene, renderer);
+        const auto bench_scene = [&](const std::string& name, double fit_seconds, coif::gl::ShellRenderer& renderer) {
             coif::gl::RenderTarget target(cam.width, cam.height, GL_RGBA16F, settings.samples);
             target.bind();
             renderer.draw(cam, settings);  // the shadow pass runs on the first frame only (lights unchanged after)
@@ -126,26 +120,33 @@ void add_bench_render(CLI::App& root) {
             const FrameStats full = measure(renderer, cam, settings, false, o->frames);
             const FrameStats floor = measure(renderer, cam, settings, true, o->frames);
             const auto& st = renderer.stats();
-            rows.push_back({{"scene", sc.name}, {"fit_s", sc.fit_seconds}, {"clusters", st.clusters}, {"sectors", st.sectors},
+            rows.push_back({{"scene", name}, {"fit_s", fit_seconds}, {"clusters", st.clusters}, {"sectors", st.sectors},
                             {"triangles", st.triangles}, {"lighting_samples", st.lighting_samples},
                             {"shadow_grid", {st.grid_x, st.grid_y, st.grid_z}}, {"prepare_s", st.prepare_seconds},
                             {"frame_ms", full.wall_ms}, {"fps", 1000.0 / full.wall_ms},
                             {"shadow_pass_ms", shadows_ms}, {"lighting_pass_ms", full.lighting_ms},
                             {"shells_ms", full.shells_ms}, {"floor_ms", floor.wall_ms},
                             {"floor_shells_ms", floor.shells_ms}, {"ratio_to_floor", full.wall_ms / floor.wall_ms}});
+        };
+        bench_scene(o->scene.style, 0.0, *scene.renderer);
+        for (const BenchScene& sc : models) {
+            coif::gl::ShellRenderer renderer(sc.style, scene.satf, coif::gl::style_orientation(sc.style), o->lighting_rows);
+            renderer.set_lights(scene.lights);
+            coif::cli::refuse_eye_inside(cam, renderer);
+            bench_scene(sc.name, sc.fit_seconds, renderer);
         }
         nlohmann::ordered_json j = {
-            {"renderer", context->renderer()}, {"width", o->scene.width}, {"height", o->scene.height},
-            {"samples", settings.samples}, {"lights", lights.size()}, {"lights_source", lights_label},
+            {"renderer", scene.context->renderer()}, {"width", o->scene.width}, {"height", o->scene.height},
+            {"samples", settings.samples}, {"lights", scene.lights.size()}, {"lights_source", scene.lights_label},
             {"multiple_scattering", settings.multiple}, {"shadows_between_clusters", settings.shadows},
-            {"neighbours", settings.neighbours}, {"records", db.size()}, {"frames", o->frames}, {"scenes", rows}};
+            {"neighbours", settings.neighbours}, {"records", scene.db.size()}, {"frames", o->frames}, {"scenes", rows}};
         if (o->json) {
             std::printf("%s\n", j.dump(2).c_str());
             return;
         }
         std::printf("renderer  %s; %dx%d, %d sample(s), %zu lights (%s), %s, shadows between clusters %s; median of %d frames\n",
-                    context->renderer().c_str(), o->scene.width, o->scene.height, settings.samples, lights.size(),
-                    lights_label.c_str(), settings.multiple ? "single + multiple scattering" : "single scattering",
+                    scene.context->renderer().c_str(), o->scene.width, o->scene.height, settings.samples,
+                    scene.lights.size(), scene.lights_label.c_str(), settings.multiple ? "single + multiple scattering" : "single scattering",
                     settings.shadows ? "on" : "off", o->frames);
         std::printf("Wall-clock per pass between glFinish calls. Per hairstyle, once: SATF parameters and look-up\n"
                     "(prepare); per light change: the shadow pass; per frame: the lighting pass, and the shells (re/α\n"

@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <optional>
 
-#include "db/hrir_db.h"
-#include "db/satf.h"
 #include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
@@ -145,30 +143,25 @@ void add_render(CLI::App& root) {
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
         if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
-        std::string lights_label;
-        const std::vector<coif::SrbfLight> lights = coif::cli::load_render_lights(o->env, &lights_label);
-        const coif::HairStyle style = coif::cli::load_style(o->scene.style);
+        settings.timed = true;  // wall-clock per pass between glFinish calls (llvmpipe's timer queries misattribute)
+        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
         std::optional<coif::AbsorptionMap> absorption;
-        if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, style.clusters.size());
-        const coif::HrirDatabase db = coif::cli::open_render_database(o->db);
-        const coif::SatfIndex satf = coif::SatfIndex::open(db, coif::SatfOptions{});
-        auto context = coif::gl::Context::headless();
-        coif::gl::ShellRenderer renderer(style, satf, coif::gl::style_orientation(style), o->lighting_rows);
-        renderer.set_lights(lights);
-        if (absorption) renderer.set_absorption(&*absorption);
-        const coif::Camera camera = coif::cli::shell_camera(o->scene, renderer);
+        if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.style.clusters.size());
+        coif::cli::ShellScene scene(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr);
+        coif::gl::ShellRenderer& renderer = *scene.renderer;
+        const coif::Camera& camera = scene.camera;
         const coif::Image image = renderer.render(camera, settings);
         wo.description = "coif render: SATF shells, SRBF Marschner lighting; style " + o->scene.style + "; database " +
-                         db.path().string() + "; lights " + lights_label;
+                         scene.db.path().string() + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
         const auto& st = renderer.stats();
+        const coif::gl::ShellTimings& t = renderer.timings();
         std::fprintf(stderr,
                      "rendered %s (%zu clusters, %zu sectors, %zu triangles) with %zu lights at %dx%d on %s in %.1f ms "
-                     "GPU (lighting %.1f, shells %.1f; preparation %.2f s) -> %s\n",
-                     o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, lights.size(), camera.width,
-                     camera.height, context->renderer().c_str(),
-                     renderer.timings().lighting_ms + renderer.timings().shells_ms, renderer.timings().lighting_ms,
-                     renderer.timings().shells_ms, st.prepare_seconds, o->output.c_str());
+                     "wall-clock (lighting %.1f, shells %.1f; preparation %.2f s) -> %s\n",
+                     o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, scene.lights.size(), camera.width,
+                     camera.height, scene.context->renderer().c_str(), t.lighting_wall_ms + t.shells_wall_ms,
+                     t.lighting_wall_ms, t.shells_wall_ms, st.prepare_seconds, o->output.c_str());
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d\n", st.re_norm, st.atlas_width, st.atlas_height);
         if (o->aovs) {
             const std::filesystem::path out(o->output);

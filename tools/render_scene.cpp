@@ -1,8 +1,10 @@
 #include "tools/render_scene.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <thread>
+#include <utility>
 
 #include "models/core/error.h"
 #include "offline/envmap.h"
@@ -10,6 +12,17 @@
 #include "tools/assets.h"
 
 namespace coif::cli {
+namespace {
+
+// ShellScene::camera: what `coif reference` frames for the same options, so that the two images line up pixel
+// for pixel; `sampled` are the style's strands as sampled (not yet oriented).
+Camera shell_camera(const SceneOptions& scene, Strands sampled) {
+    if (!scene.frame_strands.empty()) return scene.camera_for(Strands{});
+    if (!scene.strands.empty()) return scene.camera_for(scene.load_strands());
+    return scene.camera_for(scene.oriented(std::move(sampled)));
+}
+
+}  // namespace
 
 std::filesystem::path default_database_path() {
     const char* xdg = std::getenv("XDG_CACHE_HOME");
@@ -63,14 +76,38 @@ std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* l
     return fit_srbf_lights(map, fs).lights;
 }
 
-Camera shell_camera(const SceneOptions& scene, const gl::ShellRenderer& r) {
-    // What `coif reference` frames for the same options (the style's sampled strands, or --frame-strands),
-    // so that the two images line up pixel for pixel.
-    const Camera cam = scene.frame_strands.empty() ? scene.camera_for(scene.load_strands()) : scene.camera_for(Strands{});
+void refuse_eye_inside(const Camera& camera, const gl::ShellRenderer& r) {
     const glm::vec3 lo = r.bounds_min(), hi = r.bounds_max();
-    if (glm::all(glm::greaterThan(cam.eye, lo)) && glm::all(glm::lessThan(cam.eye, hi)))
+    if (glm::all(glm::greaterThan(camera.eye, lo)) && glm::all(glm::lessThan(camera.eye, hi)))
         throw Error::parameter("camera", "the eye lies inside the hair's bounding box");
-    return cam;
+}
+
+double median(std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
+SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env) {
+    SceneInputs in;
+    in.lights = load_render_lights(env, &in.lights_label);
+    in.style = load_style(scene.style);
+    return in;
+}
+
+ShellScene::ShellScene(const SceneOptions& scene, SceneInputs inputs, const std::string& db_path, int lighting_rows,
+                       const AbsorptionMap* absorption)
+    : lights_label(std::move(inputs.lights_label)),
+      lights(std::move(inputs.lights)),
+      style(std::move(inputs.style)),
+      db(open_render_database(db_path)),
+      satf(SatfIndex::open(db, SatfOptions{})),
+      context(gl::Context::headless()) {
+    Strands sampled;
+    renderer = std::make_unique<gl::ShellRenderer>(style, satf, gl::style_orientation(style), lighting_rows, &sampled);
+    renderer->set_lights(lights);
+    if (absorption) renderer->set_absorption(absorption);
+    camera = shell_camera(scene, std::move(sampled));
+    refuse_eye_inside(camera, *renderer);
 }
 
 }  // namespace coif::cli

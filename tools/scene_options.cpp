@@ -34,11 +34,14 @@ void SceneOptions::add_to(CLI::App* app) {
 }
 
 Strands SceneOptions::load_strands(std::string* label) const {
-    Strands s = strands.empty() ? sample_strands(load_style(style), StrandSampling{}) : read_strands(strands);
     if (label)
         *label = !strands.empty() ? strands
                : style == kDefaultStyleName ? "strands sampled from the embedded default style (harolongo, 64 clusters)"
                                             : "strands sampled from " + style;
+    return oriented(strands.empty() ? sample_strands(load_style(style), StrandSampling{}) : read_strands(strands));
+}
+
+Strands SceneOptions::oriented(Strands s) const {
     if (!keep_axes) {
         const glm::mat3 r = hang_axis_rotation(strand_stats(s));
         for (auto& p : s.points) p = r * p;
@@ -47,17 +50,7 @@ Strands SceneOptions::load_strands(std::string* label) const {
 }
 
 std::pair<glm::vec3, glm::vec3> SceneOptions::frame_box(const Strands& drawn) const {
-    StrandStats st;
-    if (frame_strands.empty()) {
-        st = strand_stats(drawn);
-    } else {
-        Strands s = read_strands(frame_strands);
-        if (!keep_axes) {
-            const glm::mat3 r = hang_axis_rotation(strand_stats(s));
-            for (auto& p : s.points) p = r * p;
-        }
-        st = strand_stats(s);
-    }
+    const StrandStats st = frame_strands.empty() ? strand_stats(drawn) : strand_stats(oriented(read_strands(frame_strands)));
     return {glm::vec3(st.bbox_min), glm::vec3(st.bbox_max)};
 }
 

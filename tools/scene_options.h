@@ -29,6 +29,8 @@ struct SceneOptions {
     // The strands to draw: the --strands file, else strands sampled from the style's densities
     // (oriented y-up unless keep_axes). `label` says which, for messages and image metadata.
     Strands load_strands(std::string* label = nullptr) const;
+    // `s` as load_strands orients what it loads: its hang axis turned to -y, unless keep_axes.
+    Strands oriented(Strands s) const;
     // The box the camera frames: the --frame-strands file's strands' (oriented as load_strands orients a
     // --strands file) when given, else `drawn`'s.
     std::pair<glm::vec3, glm::vec3> frame_box(const Strands& drawn) const;
