@@ -108,7 +108,8 @@ const Program& ShellRenderer::Impl::shading_program(bool abuffer, const ShellSet
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
     const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == layout.s_t * layout.mesh_t + 1 ? 1 : 0;
     const std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
-                                           "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug)};
+                                           "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
+                                           "SHELL_FOURIER " + std::to_string(s.fourier_order)};
     std::string key = abuffer ? "abuffer" : "blend";
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = shading_programs[key];
@@ -467,6 +468,7 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     Impl& m = *impl_;
     if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
         throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));
+    if (s.fourier_order < 1 || s.fourier_order > 4) throw Error::parameter("fourier_order", "must be 1..4");
     const DiskLayout& L = m.layout;
     glViewport(0, 0, camera.width, camera.height);
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
@@ -511,7 +513,7 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     const auto wall_ms = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
     if (s.timed) glFinish();
     auto t_pass = Clock::now();
-    timings_.lighting_wall_ms = timings_.shells_wall_ms = 0;
+    timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
     // What the lighting pass and the per-fragment lighting reference (ShellSettings::lighting_per_fragment)
     // read: the lighting module's tables and parameters, the lights, their shadows, the painted σa.
     const auto set_light_uniforms = [&](const Program& prog) {
@@ -623,11 +625,21 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
+    timings_.resolve_wall_ms = 0;
     if (exact) {  // the per-pixel sort and "over" of the lists, into the caller's framebuffer
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        Clock::time_point t_resolve;
+        if (s.timed) {
+            glFinish();
+            t_resolve = Clock::now();
+        }
         glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target_framebuffer));
         glViewport(0, 0, camera.width, camera.height);
         m.lists->resolve(s.background);
+        if (s.timed) {
+            glFinish();
+            timings_.resolve_wall_ms = wall_ms(t_resolve);
+        }
     }
     glDepthMask(GL_TRUE);
     glEndQuery(GL_TIME_ELAPSED);
@@ -741,7 +753,7 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     static const std::vector<std::string> known = {
         "eta", "sigma_a", "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg", "beta_TT_deg", "beta_TRT_deg",
         "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow", "segments", "lobes", "multiple", "neighbours", "debug", "compositing",
-        "shadows", "own_cluster_shadow", "kappa_between", "d_f", "lighting_per_fragment"};
+        "shadows", "own_cluster_shadow", "kappa_between", "d_f", "lighting_per_fragment", "fourier_order"};
     for (const auto& [key, value] : j.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
             throw Error(path, "JSON /" + key, "unknown parameter (known: eta, sigma_a, alpha_R_deg, beta_R_deg, …)");
@@ -811,6 +823,10 @@ ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
     if (j.contains("own_cluster_shadow")) {
         if (!j["own_cluster_shadow"].is_boolean()) throw Error(path, "JSON /own_cluster_shadow", "expected true or false");
         s.own_cluster_shadow = j["own_cluster_shadow"].get<bool>();
+    }
+    if (auto v = number("fourier_order")) {
+        if (*v < 1 || *v > 4 || *v != std::floor(*v)) throw Error(path, "JSON /fourier_order", "must be 1, 2, 3 or 4");
+        s.fourier_order = static_cast<int>(*v);
     }
     if (j.contains("lighting_per_fragment")) {
         if (!j["lighting_per_fragment"].is_boolean()) throw Error(path, "JSON /lighting_per_fragment", "expected true or false");

@@ -78,6 +78,7 @@ struct ShellSettings {
     float d_f = 0.7f;               // Zinke's forward-scattering density factor d_f
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
+    int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
     int samples = 4;                // MSAA samples of the offscreen target (the exact compositing is 1 sample)
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
@@ -93,7 +94,8 @@ struct ShellSettings {
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
 //    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
 //    "debug": 0..4 (ShellSettings::debug), "compositing": "exact" | "sorted" | "unsorted", "shadows": true,
-//    "own_cluster_shadow": true, "kappa_between", "d_f", "lighting_per_fragment": false}
+//    "own_cluster_shadow": true, "kappa_between", "d_f", "lighting_per_fragment": false,
+//    "fourier_order": 1..4}
 // α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
 // throws coif::Error naming the file and the key.
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
@@ -120,6 +122,7 @@ struct ShellTimings {
     double shadows_ms = 0;  // wall time of the shadow pass (glFinish); 0 when cached
     double lighting_ms = 0, shells_ms = 0;
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
+    double resolve_wall_ms = 0;  // of shells_wall_ms, the exact compositing's resolve (timed, Compositing::exact)
 };
 
 class ShellRenderer {

@@ -22,6 +22,8 @@
 //                        at this fragment (its own T, V and radial axis; T̃, n interpolated between the
 //                        lighting samples along t) times re at that light's own azimuth
 //   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV
+//   SHELL_FOURIER     harmonics of re in θl used, 1..4 (the database stores 4): 1 reads one atlas tile per
+//                     record, 2 and 3 two, 4 all three; the dropped ones are zero
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -38,6 +40,9 @@
 #endif
 #ifndef SHELL_DEBUG
 #define SHELL_DEBUG 0
+#endif
+#ifndef SHELL_FOURIER
+#define SHELL_FOURIER 4
 #endif
 
 #if SHELL_LIGHTING == 2
@@ -97,14 +102,25 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
         float w = s.weight[n];
         uint base = s.id[n] * 3u;
         t0 += w * atlas_fetch(base, p);
+#if SHELL_FOURIER >= 2
         t1 += w * atlas_fetch(base + 1u, p);
+#endif
+#if SHELL_FOURIER >= 4
         t2 += w * atlas_fetch(base + 2u, p);
+#endif
         wsum += w;
     }
     float inv = wsum > 0.0 ? 1.0 / wsum : 0.0;
     t0 = u_atlas_lo[0] + u_atlas_scale[0] * (t0 * inv);
+#if SHELL_FOURIER >= 2
     t1 = u_atlas_lo[1] + u_atlas_scale[1] * (t1 * inv);
+#endif
+#if SHELL_FOURIER == 2
+    t1.zw = vec2(0.0);
+#endif
+#if SHELL_FOURIER >= 4
     t2 = u_atlas_lo[2] + u_atlas_scale[2] * (t2 * inv);
+#endif
 }
 
 vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info) {
