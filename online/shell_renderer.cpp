@@ -58,6 +58,22 @@ struct MeshRange {
     GLsizei vertex_count = 0;
 };
 
+// Mean of each f × f block of pixels (all channels).
+Image downsample_box(const Image& fine, int f) {
+    Image out(fine.width / f, fine.height / f, fine.channels, 0.0f);
+    const float norm = 1.0f / static_cast<float>(f * f);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            float* o = out.at(x, y);
+            for (int dy = 0; dy < f; ++dy)
+                for (int dx = 0; dx < f; ++dx) {
+                    const float* p = fine.at(x * f + dx, y * f + dy);
+                    for (int c = 0; c < fine.channels; ++c) o[c] += p[c] * norm;
+                }
+        }
+    return out;
+}
+
 glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
     const glm::mat3 r = glm::mat3_cast(glm::quat(s.rotation));
     glm::mat4 m(orientation * r * static_cast<float>(s.scale));
@@ -141,10 +157,6 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     const DiskLayout& L = m.layout;
     const HrirDatabase& db = satf.database();
     const AngleGrids& g = db.params().grids;
-    if (g.fourier_order != 4)
-        throw Error(db.path().string(), "header /grids/fourier_order",
-                    "the shell renderer reads re as a Fourier series of order 4; this database has order " +
-                        std::to_string(g.fourier_order));
     if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
     m.views = g.views;
     m.hrir_length = g.hrir_length;
@@ -193,7 +205,9 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
                     for (int ch = 0; ch < 4; ++ch) {
                         const int value = part * 4 + ch;  // 0 = α, 1.. = re coefficient value − 1
                         if (value == 0) texel[ch] = r[g.alpha_offset(v) + x];
-                        else if (value <= 9) texel[ch] = r[g.re_offset(v, value - 1) + x];
+                        // re's first 9 coefficients (a0, a1, b1 … a4, b4); a database of a lower order
+                        // leaves the rest zero, one of a higher order is read to order 4.
+                        else if (value <= 9 && value - 1 < g.coefficients()) texel[ch] = r[g.re_offset(v, value - 1) + x];
                     }
                     const std::size_t at = static_cast<std::size_t>(oy + py) * m.atlas_w + ox + px;
                     atlas[at] = texel;
@@ -697,10 +711,23 @@ std::vector<glm::vec3> ShellRenderer::lighting_sample(std::size_t index) const {
 }
 
 Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings) {
-    RenderTarget target(camera.width, camera.height, GL_RGBA16F, settings.samples);
+    if (settings.compositing != Compositing::exact || settings.samples <= 1) {
+        RenderTarget target(camera.width, camera.height, GL_RGBA16F, settings.samples);
+        target.bind();
+        draw(camera, settings);
+        return target.read_back();
+    }
+    // The exact compositing keeps one fragment list per pixel, so it antialiases by supersampling: f × f
+    // pixels per output pixel, f = round(√samples), composited exactly and box-filtered (the same
+    // projection: only the pixel grid is finer). It costs ~f² of a one-sample frame.
+    const int f = std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
+    Camera fine = camera;
+    fine.width = camera.width * f;
+    fine.height = camera.height * f;
+    RenderTarget target(fine.width, fine.height, GL_RGBA16F, 1);
     target.bind();
-    draw(camera, settings);
-    return target.read_back();
+    draw(fine, settings);
+    return downsample_box(target.read_back(), f);
 }
 
 FragmentCapture ShellRenderer::capture_fragments(const Camera& camera, const ShellSettings& settings, Image* resolved) {
