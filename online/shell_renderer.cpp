@@ -58,22 +58,6 @@ struct MeshRange {
     GLsizei vertex_count = 0;
 };
 
-// Mean of each f × f block of pixels (all channels).
-Image downsample_box(const Image& fine, int f) {
-    Image out(fine.width / f, fine.height / f, fine.channels, 0.0f);
-    const float norm = 1.0f / static_cast<float>(f * f);
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x) {
-            float* o = out.at(x, y);
-            for (int dy = 0; dy < f; ++dy)
-                for (int dx = 0; dx < f; ++dx) {
-                    const float* p = fine.at(x * f + dx, y * f + dy);
-                    for (int c = 0; c < fine.channels; ++c) o[c] += p[c] * norm;
-                }
-        }
-    return out;
-}
-
 glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
     const glm::mat3 r = glm::mat3_cast(glm::quat(s.rotation));
     glm::mat4 m(orientation * r * static_cast<float>(s.scale));
@@ -103,6 +87,7 @@ struct ShellRenderer::Impl {
     std::vector<std::size_t> cluster_proto;      // cluster → prototype slot
     std::vector<glm::vec3> cluster_centre;
     int tiles_per_row = 1, atlas_w = 1, atlas_h = 1, views = 32, hrir_length = 32;
+    glm::vec2 jitter{0.0f};    // sub-pixel image shift of the next draw (render()'s supersampling), pixels
     bool atlas_8bit = true;                                    // RGBA8 + per-channel range, else RGBA16F
     glm::vec4 atlas_lo[3]{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};  // value = lo + scale · texel
     glm::vec4 atlas_scale[3]{glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};
@@ -573,7 +558,9 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     glBeginQuery(GL_TIME_ELAPSED, m.query_shells.id());
     const Program& prog = floor_only ? m.floor : m.shading_program(exact, s);
     prog.use();
-    const glm::mat4 vp = camera.projection() * camera.view();
+    // A sub-pixel shift of the image (render()'s supersampling): x right, y down, in pixels.
+    const glm::vec3 shift(2.0f * m.jitter.x / camera.width, -2.0f * m.jitter.y / camera.height, 0.0f);
+    const glm::mat4 vp = glm::translate(glm::mat4(1.0f), shift) * camera.projection() * camera.view();
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
     if (!floor_only) {
         glBindTextureUnit(0, m.atlas.id());
@@ -718,16 +705,25 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
         return target.read_back();
     }
     // The exact compositing keeps one fragment list per pixel, so it antialiases by supersampling: f × f
-    // pixels per output pixel, f = round(√samples), composited exactly and box-filtered (the same
-    // projection: only the pixel grid is finer). It costs ~f² of a one-sample frame.
+    // frames, f = round(√samples), each shifted by a sub-pixel offset so that together they sample the
+    // pixel centres of an f-times finer grid (the same positions, the same memory as one frame), averaged
+    // (a box filter). It costs f² frames.
     const int f = std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
-    Camera fine = camera;
-    fine.width = camera.width * f;
-    fine.height = camera.height * f;
-    RenderTarget target(fine.width, fine.height, GL_RGBA16F, 1);
+    RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
-    draw(fine, settings);
-    return downsample_box(target.read_back(), f);
+    Image sum;
+    for (int j = 0; j < f; ++j)
+        for (int i = 0; i < f; ++i) {
+            impl_->jitter = glm::vec2((i + 0.5f) / f - 0.5f, (j + 0.5f) / f - 0.5f);
+            draw(camera, settings);
+            const Image frame = target.read_back();
+            if (sum.empty()) sum = Image(frame.width, frame.height, frame.channels, 0.0f);
+            for (std::size_t k = 0; k < frame.pixels.size(); ++k) sum.pixels[k] += frame.pixels[k];
+        }
+    impl_->jitter = glm::vec2(0.0f);
+    const float norm = 1.0f / static_cast<float>(f * f);
+    for (float& v : sum.pixels) v *= norm;
+    return sum;
 }
 
 FragmentCapture ShellRenderer::capture_fragments(const Camera& camera, const ShellSettings& settings, Image* resolved) {

@@ -80,7 +80,7 @@ struct ShellSettings {
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
-    int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact: render() supersamples round(√samples)²
+    int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact: render() averages round(√samples)² shifted frames
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re), 4 shadow AOV
     // Decision 3's reference: every light evaluated per fragment (its own T, V and radial axis, re at each
@@ -145,7 +145,8 @@ public:
     // shells in the same order with a trivial shader (the floor of `coif bench render`).
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);
     // Renders into an offscreen target of the camera's size and returns the linear RGBA image; the exact
-    // compositing with samples > 1 renders f = round(√samples) times larger and box-filters (antialiasing).
+    // compositing with samples > 1 averages f² frames, f = round(√samples), shifted to the pixel centres of
+    // an f-times finer grid (supersampling with a box filter, at one frame's memory).
     Image render(const Camera& camera, const ShellSettings& settings);
     // Every shell fragment of this view (the exact compositing's lists, single sample; `settings`'
     // compositing and samples are ignored), drawn again with more storage if the first try overflowed.

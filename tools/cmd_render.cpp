@@ -1,6 +1,9 @@
 // coif render — one image of the scene: the SATF shell renderer lit by SRBF Marschner lighting
 // (online/shell_renderer.h), or, for --strands FILE and --preview-strands, the strands as GL lines lit by
 // the same SRBF Marschner lighting (online/strand_renderer.h).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -67,8 +70,8 @@ void add_render(CLI::App& root) {
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))->capture_default_str();
     render->add_option("--samples", o->samples,
-                       "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) the image is "
-                       "supersampled round(sqrt(N))^2 times and box-filtered (N = 4: 2x2, ~4x the time)")->check(CLI::Range(1, 16))->capture_default_str();
+                       "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) round(sqrt(N))^2 "
+                       "frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")->check(CLI::Range(1, 16))->capture_default_str();
     render->add_option("--compositing", o->compositing,
                        "exact (per-pixel fragment lists sorted on the GPU, 1 sample: the default), sorted (clusters "
                        "back to front, blended; MSAA applies), or unsorted; overrides the --params key")
@@ -152,7 +155,9 @@ void add_render(CLI::App& root) {
         coif::cli::ShellScene scene(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr);
         coif::gl::ShellRenderer& renderer = *scene.renderer;
         const coif::Camera& camera = scene.camera;
+        const auto t_render = std::chrono::steady_clock::now();
         const coif::Image image = renderer.render(camera, settings);
+        const double render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_render).count();
         wo.description = "coif render: SATF shells, SRBF Marschner lighting; style " + o->scene.style + "; database " +
                          scene.db.path().string() + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
@@ -160,10 +165,15 @@ void add_render(CLI::App& root) {
         const coif::gl::ShellTimings& t = renderer.timings();
         std::fprintf(stderr,
                      "rendered %s (%zu clusters, %zu sectors, %zu triangles) with %zu lights at %dx%d on %s in %.1f ms "
-                     "wall-clock (lighting %.1f, shells %.1f; preparation %.2f s) -> %s\n",
+                     "wall-clock (last frame: lighting %.1f, shells %.1f; preparation %.2f s) -> %s\n",
                      o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, scene.lights.size(), camera.width,
-                     camera.height, scene.context->renderer().c_str(), t.lighting_wall_ms + t.shells_wall_ms,
-                     t.lighting_wall_ms, t.shells_wall_ms, st.prepare_seconds, o->output.c_str());
+                     camera.height, scene.context->renderer().c_str(), render_ms, t.lighting_wall_ms, t.shells_wall_ms,
+                     st.prepare_seconds, o->output.c_str());
+        if (settings.compositing == coif::gl::Compositing::exact && settings.samples > 1) {
+            const int f = static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples))));
+            std::fprintf(stderr, "antialiased: %d frames shifted within the pixel, averaged (--samples %d; 1 for one frame)\n",
+                         std::clamp(f, 1, 4) * std::clamp(f, 1, 4), settings.samples);
+        }
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d\n", st.re_norm, st.atlas_width, st.atlas_height);
         if (o->aovs) {
             const std::filesystem::path out(o->output);

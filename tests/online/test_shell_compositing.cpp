@@ -148,8 +148,10 @@ TEST(ShellCompositing, ParametersFileSelectsTheMode) {
 }
 
 TEST(ShellCompositing, ExactModeSupersamplesWhenAskedForSamples) {
-    // The exact compositing antialiases by supersampling (ShellRenderer::render): 4 samples = the 2 × 2
-    // box filter of the same view drawn at twice the size, bit for bit up to the float sum's rounding;
+    // The exact compositing antialiases by supersampling (ShellRenderer::render): 4 samples = 4 frames shifted
+    // to the pixel centres of a 2× finer grid, averaged = the 2 × 2 box filter of the same view drawn at twice
+    // the size, up to each frame's RGBA16F rounding (2^-11 relative on values up to ~1) and the rasteriser's
+    // sub-pixel snapping: max |Δ| 1e-3 (measured 4.1e-4);
     // it softens the silhouette (pixels strictly between the background and the 1-sample image's hair
     // appear) and keeps the image's mean within 5 % of the 1-sample image's (the same hair resampled; the
     // clusters are a few pixels wide here, so the 1-sample silhouette's coverage is itself off by up to half a
@@ -182,7 +184,7 @@ TEST(ShellCompositing, ExactModeSupersamplesWhenAskedForSamples) {
             }
     std::printf("supersampled vs box filter of the 2x view: max |Δ| %.3g; mean %.4g vs 1 sample %.4g; %d pixels newly touched\n",
                 worst, mean_aa, mean_one, partial);
-    EXPECT_LT(worst, 1e-5);
+    EXPECT_LT(worst, 1e-3);
     EXPECT_GT(partial, 0);
     ASSERT_GT(mean_one, 0.0);
     EXPECT_NEAR(mean_aa / mean_one, 1.0, 0.05);
