@@ -161,7 +161,7 @@ void StrandRenderer::set_shading_uniforms(const Program& program, const Camera& 
     glUniform1i(program.uniform("u_multiple"), s.multiple ? 1 : 0);
     set_lighting_uniforms(program, s.hair, s.config);
     tables_.bind(program, kFirstLutUnit);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights_.id());  // shaders/gl/srbf_lights.glsl
 }
 
 Image StrandRenderer::render(const Camera& camera, const StrandSettings& settings) {

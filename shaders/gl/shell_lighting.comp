@@ -35,14 +35,8 @@ void main() {
     if (u_absorption_on != 0) hp.sigma_a = texelFetch(u_absorption, ivec2(row, cluster), 0).rgb;
     vec3 T = normalize(s.tangent.xyz);
     vec3 r0 = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
-    vec3 w = cross(T, r0);
     vec3 V = normalize(u_eye - s.position.xyz);
-    float theta_o;
-    float phi_o;
-    hair_angles(V, T, r0, w, theta_o, phi_o);
-    vec4 f0123;
-    vec4 f45;
-    srbf_point_setup(hp, u_config, f0123, f45);
+    SrbfPoint p = srbf_point(hp, V, T, r0);
     vec3 C[5];
     vec3 S[5];
     for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
@@ -50,7 +44,7 @@ void main() {
     float total = 0.0;
     for (int j = 0; j < u_light_count; ++j) {
         vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
-        vec3 wj = shell_light_weight(hp, f0123, f45, theta_o, phi_o, T, r0, w, j, sh, visible, total);
+        vec3 wj = shell_light_weight(p, j, sh, visible, total);
         vec3 l = lights[j].direction_lambda.xyz;
         float psi = sector_azimuth(l, T, r0);
         float lp = shell_light_spread(j, T);

@@ -170,13 +170,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     if (u_absorption_on != 0)
         hp.sigma_a = mix(texelFetch(u_absorption, ivec2(row, int(info.y)), 0).rgb,
                          texelFetch(u_absorption, ivec2(row + 1, int(info.y)), 0).rgb, f);
-    vec3 w = cross(T, r);
-    float theta_o;
-    float phi_o;
-    hair_angles(V, T, r, w, theta_o, phi_o);
-    vec4 f0123;
-    vec4 f45;
-    srbf_point_setup(hp, u_config, f0123, f45);
+    SrbfPoint pt = srbf_point(hp, V, T, r);
     vec3 lit = vec3(0.0);
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
@@ -185,7 +179,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         vec2 sh = vec2(1.0, 0.0);
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
-        vec3 wj = shell_light_weight(hp, f0123, f45, theta_o, phi_o, T, r, w, j, sh, visible, total);
+        vec3 wj = shell_light_weight(pt, j, sh, visible, total);
         float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
         float lp = shell_light_spread(j, T);
         float d1 = exp(-0.25 * lp * lp);

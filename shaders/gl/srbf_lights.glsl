@@ -1,0 +1,58 @@
+// The SRBF lights of a GL program and one light's radiance at a fibre point, written once for the shell
+// renderer's lighting pass and per-fragment reference (shell_light.glsl) and the lit strand renderer
+// (strand_lighting.glsl): L_j (T̃_j 𝓜_j + multiple scattering) of shaders/lighting/srbf_shadowed.glsl
+// (000 eq. 2–5 in Zinke's split). The program binds its lights at storage binding 3.
+#ifndef COIF_SHADERS_GL_SRBF_LIGHTS_GLSL
+#define COIF_SHADERS_GL_SRBF_LIGHTS_GLSL
+
+#include "shaders/lighting/luts_gl.glsl"
+#include "shaders/lighting/srbf_shadowed.glsl"
+
+struct GpuLight {
+    vec4 direction_lambda;  // xyz towards the light (unit), w = λ_j
+    vec4 radiance;          // rgb = L_j
+};
+layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
+
+uniform int u_light_count;
+uniform HairParams u_hair;
+uniform LightingConfig u_config;
+uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT
+uniform int u_multiple;  // dual scattering on/off
+
+// A fibre point seen along V: its frame (T, r0, w = T × r0), the view's hair angles in it and the
+// parameter setup of the SRBF lobes, made once per point by srbf_point().
+struct SrbfPoint {
+    HairParams hp;
+    vec3 T, r0, w;
+    float theta_o, phi_o;
+    vec4 f0123, f45;
+};
+SrbfPoint srbf_point(HairParams hp, vec3 V, vec3 T, vec3 r0) {
+    SrbfPoint p;
+    p.hp = hp;
+    p.T = T;
+    p.r0 = r0;
+    p.w = cross(T, r0);
+    hair_angles(V, T, r0, p.w, p.theta_o, p.phi_o);
+    srbf_point_setup(hp, u_config, p.f0123, p.f45);
+    return p;
+}
+
+// Light j's radiance at point p, shadowed by sh = (T̃, n) (unoccluded: (1, 0)), with Zinke's forward
+// density factor d_f.
+vec3 srbf_light_radiance(SrbfPoint p, float d_f, int j, vec2 sh) {
+    float lambda_j = lights[j].direction_lambda.w;
+    float theta_j;
+    float phi_j;
+    hair_angles(lights[j].direction_lambda.xyz, p.T, p.r0, p.w, theta_j, phi_j);
+    vec3 m = vec3(0.0);
+    if (sh.x > MS_NEGLIGIBLE)
+        m = sh.x * srbf_single_lobes(p.hp, u_config, p.f0123, p.f45, u_lobes, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j);
+    if (u_multiple != 0)
+        m += srbf_shadowed_multiple(p.hp, u_config, p.f0123, p.f45, d_f, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j,
+                                    sh.x, sh.y);
+    return lights[j].radiance.rgb * m;
+}
+
+#endif
