@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -88,7 +89,6 @@ struct ShellRenderer::Impl {
     std::vector<glm::vec3> cluster_centre;
     int tiles_per_row = 1, atlas_w = 1, atlas_h = 1, views = 32, hrir_length = 32;
     glm::vec2 jitter{0.0f};    // sub-pixel image shift of the next draw (render()'s supersampling), pixels
-    bool atlas_8bit = true;                                    // RGBA8 + per-channel range, else RGBA16F
     glm::vec4 atlas_lo[3]{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};  // value = lo + scale · texel
     glm::vec4 atlas_scale[3]{glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};
     int lighting_rows = 2;
@@ -205,36 +205,28 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     // Stored as 8-bit unorm texels with one affine range per channel of each part (value = lo + scale ·
     // texel): bilinear filtering and the neighbour blend commute with the affine map, so the shader decodes
     // once per sector. Half the memory of RGBA16F and llvmpipe's faster 8-bit filtering; the quantisation's
-    // effect on the image is in docs/renderer.md.
-    std::vector<std::uint8_t> atlas8;
-    if (m.atlas_8bit) {
-        for (int part = 0; part < 3; ++part) {
-            glm::vec4 lo = part_lo[part], hi = part_hi[part];
-            for (int ch = 0; ch < 4; ++ch)
-                if (!(hi[ch] > lo[ch])) hi[ch] = lo[ch] + 1.0f;  // a constant (or unused) channel
-            m.atlas_lo[part] = lo;
-            m.atlas_scale[part] = hi - lo;  // the fetch returns texel / 255
-        }
-        atlas8.resize(atlas.size() * 4);
-        for (std::size_t t = 0; t < atlas.size(); ++t) {
-            const int part = atlas_part[t];
-            for (int ch = 0; ch < 4; ++ch) {
-                const float u = (atlas[t][ch] - m.atlas_lo[part][ch]) / m.atlas_scale[part][ch] * 255.0f;
-                atlas8[t * 4 + ch] = static_cast<std::uint8_t>(std::clamp(std::lround(u), 0L, 255L));
-            }
+    // effect on the image (51 dB against RGBA16F) is in docs/renderer.md.
+    for (int part = 0; part < 3; ++part) {
+        glm::vec4 lo = part_lo[part], hi = part_hi[part];
+        for (int ch = 0; ch < 4; ++ch)
+            if (!(hi[ch] > lo[ch])) hi[ch] = lo[ch] + 1.0f;  // a constant (or unused) channel
+        m.atlas_lo[part] = lo;
+        m.atlas_scale[part] = hi - lo;  // the fetch returns texel / 255
+    }
+    std::vector<std::uint8_t> atlas8(atlas.size() * 4);
+    for (std::size_t t = 0; t < atlas.size(); ++t) {
+        const int part = atlas_part[t];
+        for (int ch = 0; ch < 4; ++ch) {
+            const float u = (atlas[t][ch] - m.atlas_lo[part][ch]) / m.atlas_scale[part][ch] * 255.0f;
+            atlas8[t * 4 + ch] = static_cast<std::uint8_t>(std::clamp(std::lround(u), 0L, 255L));
         }
     }
     {
         GLuint id = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &id);
         m.atlas = Texture(id);
-        if (m.atlas_8bit) {
-            glTextureStorage2D(id, 1, GL_RGBA8, m.atlas_w, m.atlas_h);
-            glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_UNSIGNED_BYTE, atlas8.data());
-        } else {
-            glTextureStorage2D(id, 1, GL_RGBA16F, m.atlas_w, m.atlas_h);
-            glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_FLOAT, atlas.data());
-        }
+        glTextureStorage2D(id, 1, GL_RGBA8, m.atlas_w, m.atlas_h);
+        glTextureSubImage2D(id, 0, 0, 0, m.atlas_w, m.atlas_h, GL_RGBA, GL_UNSIGNED_BYTE, atlas8.data());
         glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

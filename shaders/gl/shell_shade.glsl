@@ -3,7 +3,7 @@
 //
 //   re/α     the HSV's two boundary sectors β⊤ (i) and β⊥ (i+1) each blend their nearest database
 //            records (ids and weights from the FLANN look-up, once per hairstyle); each record is
-//            read at (x, θv) with one bilinear fetch per 4 channels from the record atlas (x along the
+//            read at (x, θv) with one bilinear fetch per 4 channels from the RGBA8 record atlas (x along the
 //            HRIR, θv between the two nearest views; both periodic); the two sectors are mixed by
 //            γ = the fragment's position along t across the HSV (004 eq. 7).
 //   lighting Σ_j w_j re(x, θv, θl_j) in the Fourier form of DESIGN.md decision 1: the lighting pass
@@ -67,8 +67,8 @@ struct ShellSector {
 layout(std430, binding = 1) readonly buffer Sectors { ShellSector sectors[]; };
 
 uniform sampler2D u_records;       // record atlas: per record 3 tiles of views × X texels + 1 border
-uniform vec4 u_atlas_lo[3];        // per tile part and channel: value = lo + scale · texel (RGBA8 atlas;
-uniform vec4 u_atlas_scale[3];     // lo = 0, scale = 1 for RGBA16F)
+uniform vec4 u_atlas_lo[3];        // per tile part and channel: value = lo + scale · texel (the RGBA8
+uniform vec4 u_atlas_scale[3];     // atlas's ranges, online/shell_renderer.cpp)
 uniform int u_tiles_per_row;
 uniform vec2 u_atlas_inv_size;
 uniform int u_views;
