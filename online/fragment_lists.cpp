@@ -122,10 +122,6 @@ FragmentLists::FragmentLists()
     glCreateFramebuffers(1, &id);
     framebuffer_ = Framebuffer(id);
     empty_vao_ = make_vertex_array();
-    glCreateQueries(GL_TIMESTAMP, 1, &id);
-    resolve_start_ = Query(id);
-    glCreateQueries(GL_TIMESTAMP, 1, &id);
-    resolve_end_ = Query(id);
     check_errors("FragmentLists");
 }
 
@@ -175,15 +171,10 @@ void FragmentLists::finish() {
     stats_.dropped = count > capacity_ ? count - capacity_ : 0;
     if (stats_.dropped > 0) wanted_ = static_cast<std::uint64_t>(static_cast<double>(count) * kGrowthMargin);
     stats_.pixels_over_resolve_limit = 0;
-    stats_.resolve_ms = 0;
     if (resolved_this_frame_) {
         std::uint32_t over = 0;
         glGetNamedBufferSubData(over_limit_.id(), 0, sizeof over, &over);
         stats_.pixels_over_resolve_limit = over;
-        GLuint64 start = 0, end = 0;
-        glGetQueryObjectui64v(resolve_start_.id(), GL_QUERY_RESULT, &start);
-        glGetQueryObjectui64v(resolve_end_.id(), GL_QUERY_RESULT, &end);
-        stats_.resolve_ms = static_cast<double>(end - start) * 1e-6;
         resolved_this_frame_ = false;
     }
     check_errors("FragmentLists::finish");
@@ -192,7 +183,6 @@ void FragmentLists::finish() {
 void FragmentLists::resolve(const glm::vec3& background) {
     const std::uint32_t zero = 0;
     glNamedBufferSubData(over_limit_.id(), 0, sizeof zero, &zero);
-    glQueryCounter(resolve_start_.id(), GL_TIMESTAMP);
     resolve_.use();
     glUniform1ui(resolve_.uniform("u_capacity"), static_cast<GLuint>(capacity_));
     glUniform3fv(resolve_.uniform("u_background"), 1, &background.x);
@@ -213,7 +203,6 @@ void FragmentLists::resolve(const glm::vec3& background) {
     glBindVertexArray(empty_vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-    glQueryCounter(resolve_end_.id(), GL_TIMESTAMP);
     resolved_this_frame_ = true;
     check_errors("FragmentLists::resolve");
 }

@@ -75,7 +75,6 @@ struct FragmentListStats {
     std::uint64_t dropped = 0;                    // of those, not stored (over the capacity)
     std::uint64_t pixels_over_resolve_limit = 0;  // pixels the GPU resolve blended partly out of order
     std::uint64_t capacity = 0;                   // nodes the storage holds
-    double resolve_ms = 0;                        // GPU time of the resolve and the copy (GL_TIMESTAMP)
 };
 
 class FragmentLists {
@@ -104,7 +103,6 @@ private:
     Buffer counter_, over_limit_, colors_, links_;
     Framebuffer framebuffer_;
     Program resolve_, copy_;
-    Query resolve_start_, resolve_end_;
     VertexArray empty_vao_;
     FragmentListStats stats_;
     bool resolved_this_frame_ = false;

@@ -1,6 +1,7 @@
 #include "online/lighting_uniforms.h"
 
 #include <cstdio>
+#include <vector>
 
 namespace coif::gl {
 
@@ -60,6 +61,19 @@ void set_lighting_uniforms(const Program& program, const shading::HairParams& ha
     i1("u_config.paper_norm", config.paper_norm);
     i1("u_config.paper_theta_gauss", config.paper_theta_gauss);
     i1("u_config.paper_tt", config.paper_tt);
+}
+
+Buffer make_lights_buffer(std::span<const SrbfLight> lights) {
+    struct GpuLight {  // std430 mirror of shaders/gl/srbf_lights.glsl
+        glm::vec4 direction_lambda, radiance;
+    };
+    std::vector<GpuLight> gpu;
+    gpu.reserve(lights.size());
+    for (const SrbfLight& l : lights) {
+        shading::validate_light(l.lambda, l.omega, "SRBF light");
+        gpu.push_back({glm::vec4(glm::normalize(l.omega), l.lambda), glm::vec4(l.L, 0.0f)});
+    }
+    return make_buffer(gpu.data(), gpu.size() * sizeof(GpuLight));
 }
 
 }  // namespace coif::gl

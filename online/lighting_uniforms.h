@@ -4,10 +4,13 @@
 // named as kLutUniformNames) and declares `uniform HairParams u_hair; uniform LightingConfig u_config;`.
 //   - LightingTextures: the global tables (shading::global_lighting_tables) and the dual-scattering tables
 //     of one hair parameter set as textures, rebuilt only when the parameters change;
-//   - set_lighting_uniforms: u_hair.* and u_config.*.
+//   - set_lighting_uniforms: u_hair.* and u_config.*;
+//   - make_lights_buffer: the SRBF lights as shaders/gl/srbf_lights.glsl reads them (storage binding 3).
 // Used by the strand renderer (online/strand_renderer.h) and the shell renderer's lighting pass.
 #include <array>
+#include <span>
 
+#include "offline/srbf_lights.h"
 #include "online/gl.h"
 #include "shaders/lighting.h"
 
@@ -42,5 +45,9 @@ private:
 
 // u_hair.* and u_config.* of the program in use.
 void set_lighting_uniforms(const Program& program, const shading::HairParams& hair, const shading::LightingConfig& config);
+
+// The lights as the std430 array `GpuLight lights[]` of shaders/gl/srbf_lights.glsl ((unit ω, λ), (L, 0) each);
+// validates each light (shading::validate_light: coif::Error).
+Buffer make_lights_buffer(std::span<const SrbfLight> lights);
 
 }  // namespace coif::gl

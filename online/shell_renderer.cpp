@@ -44,9 +44,6 @@ struct GpuSector {
 struct GpuSample {
     glm::vec4 position, tangent, normal;
 };
-struct GpuLight {
-    glm::vec4 direction_lambda, radiance;
-};
 struct Vertex {
     glm::vec3 position, tangent, normal;
     glm::vec2 texcoord;
@@ -94,7 +91,6 @@ struct ShellRenderer::Impl {
     int lighting_rows = 2;
     std::size_t sample_count = 0;
     int light_count = 0;
-    Query query_lighting, query_shells;
     // The shading programs, one per compile-time variant (shaders/gl/shell_shade.glsl), made on first use.
     std::map<std::string, std::unique_ptr<Program>> shading_programs;
     const Program& shading_program(bool abuffer, const ShellSettings& s);
@@ -407,10 +403,6 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
         glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
-    GLuint q[2];
-    glCreateQueries(GL_TIME_ELAPSED, 2, q);
-    m.query_lighting = Query(q[0]);
-    m.query_shells = Query(q[1]);
     check_errors("ShellRenderer upload");
     stats_.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -418,14 +410,9 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
 ShellRenderer::~ShellRenderer() = default;
 
 void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
-    std::vector<GpuLight> gpu;
-    for (const SrbfLight& l : lights) {
-        shading::validate_light(l.lambda, l.omega, "SRBF light");
-        gpu.push_back({glm::vec4(glm::normalize(l.omega), l.lambda), glm::vec4(l.L, 0.0f)});
-    }
-    impl_->lights = make_buffer(gpu.data(), gpu.size() * sizeof(GpuLight));
-    impl_->light_count = static_cast<int>(gpu.size());
-    impl_->shadows = make_buffer(nullptr, std::max<std::size_t>(1, gpu.size() * impl_->sample_count) * sizeof(glm::vec2));
+    impl_->lights = make_lights_buffer(lights);
+    impl_->light_count = static_cast<int>(lights.size());
+    impl_->shadows = make_buffer(nullptr, lights.size() * impl_->sample_count * sizeof(glm::vec2));
     impl_->shadows_valid = false;
 }
 
@@ -525,7 +512,6 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     };
     if (!floor_only) m.lighting_textures.update(s.hair, s.config);  // validates; rebuilds only on a change
     if (!floor_only) {
-        glBeginQuery(GL_TIME_ELAPSED, m.query_lighting.id());
         m.lighting.use();
         set_light_uniforms(m.lighting);
         glUniform1i(m.lighting.uniform("u_sample_count"), static_cast<GLint>(m.sample_count));
@@ -535,7 +521,6 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         glBindImageTexture(0, m.lighting_tex.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glDispatchCompute(static_cast<GLuint>((m.sample_count + 31) / 32), 1, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        glEndQuery(GL_TIME_ELAPSED);
     }
 
     if (s.timed) {
@@ -547,7 +532,6 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     // ---- shells ------------------------------------------------------------------------------------
     const bool exact = !floor_only && s.compositing == Compositing::exact;
     if (exact && !m.lists) m.lists = std::make_unique<FragmentLists>();
-    glBeginQuery(GL_TIME_ELAPSED, m.query_shells.id());
     const Program& prog = floor_only ? m.floor : m.shading_program(exact, s);
     prog.use();
     // A sub-pixel shift of the image (render()'s supersampling): x right, y down, in pixels.
@@ -635,21 +619,11 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
         }
     }
     glDepthMask(GL_TRUE);
-    glEndQuery(GL_TIME_ELAPSED);
     if (s.timed) {
         glFinish();
         timings_.shells_wall_ms = wall_ms(t_pass);
     }
     check_errors("ShellRenderer::draw");
-    GLuint64 ns = 0;
-    if (!floor_only) {
-        glGetQueryObjectui64v(m.query_lighting.id(), GL_QUERY_RESULT, &ns);
-        timings_.lighting_ms = static_cast<double>(ns) * 1e-6;
-    } else {
-        timings_.lighting_ms = 0;
-    }
-    glGetQueryObjectui64v(m.query_shells.id(), GL_QUERY_RESULT, &ns);
-    timings_.shells_ms = static_cast<double>(ns) * 1e-6;
     if (exact) {
         m.lists->finish();
         if (m.lists->stats().dropped > 0)
@@ -689,9 +663,16 @@ std::vector<glm::vec3> ShellRenderer::lighting_sample(std::size_t index) const {
     return {glm::vec3(s.position), glm::vec3(s.tangent), glm::vec3(s.normal)};
 }
 
+int supersampling(const ShellSettings& settings) {
+    if (settings.compositing != Compositing::exact) return 1;
+    return std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
+}
+
 Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings) {
-    if (settings.compositing != Compositing::exact || settings.samples <= 1) {
-        RenderTarget target(camera.width, camera.height, GL_RGBA16F, settings.samples);
+    const int f = supersampling(settings);
+    if (f == 1) {  // the blended modes' MSAA, or one exact frame (its lists hold one sample per pixel)
+        RenderTarget target(camera.width, camera.height, GL_RGBA16F,
+                            settings.compositing == Compositing::exact ? 1 : settings.samples);
         target.bind();
         draw(camera, settings);
         return target.read_back();
@@ -700,19 +681,21 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     // frames, f = round(√samples), each shifted by a sub-pixel offset so that together they sample the
     // pixel centres of an f-times finer grid (the same positions, the same memory as one frame), averaged
     // (a box filter). It costs f² frames.
-    const int f = std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
     RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
     Image sum;
+    double shadows_ms = 0;  // the render's shadow pass, if it ran (on its first frame)
     for (int j = 0; j < f; ++j)
         for (int i = 0; i < f; ++i) {
             impl_->jitter = glm::vec2((i + 0.5f) / f - 0.5f, (j + 0.5f) / f - 0.5f);
             draw(camera, settings);
+            shadows_ms += timings_.shadows_ms;
             const Image frame = target.read_back();
             if (sum.empty()) sum = Image(frame.width, frame.height, frame.channels, 0.0f);
             for (std::size_t k = 0; k < frame.pixels.size(); ++k) sum.pixels[k] += frame.pixels[k];
         }
     impl_->jitter = glm::vec2(0.0f);
+    timings_.shadows_ms = shadows_ms;
     const float norm = 1.0f / static_cast<float>(f * f);
     for (float& v : sum.pixels) v *= norm;
     return sum;

@@ -89,6 +89,10 @@ struct ShellSettings {
     bool lighting_per_fragment = false;
     bool timed = false;             // glFinish around each pass and wall-clock timings (benchmarks; see ShellTimings)
 };
+// The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
+// 1..4, for the exact compositing (the blended modes use MSAA: 1).
+int supersampling(const ShellSettings& settings);
+
 // Reads a parameters file (JSON object; every key optional; degrees for angles):
 //   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
 //    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
@@ -114,13 +118,11 @@ struct ShellStats {
     float voxel = 0;                 // shadow grid voxel edge, world units
 };
 
-// Of the last draw, milliseconds. lighting_ms and shells_ms are GL_TIME_ELAPSED queries, which llvmpipe
-// does not attribute reliably (its rasteriser runs on after the query ends: measured, a lighting pass
-// of 0.5 ms read 430 ms); with ShellSettings::timed the *_wall_ms are wall-clock times of each pass
-// between glFinish calls, which are what `coif bench render` reports.
+// Of the last draw, milliseconds: with ShellSettings::timed, wall-clock times of each pass between glFinish
+// calls (GL_TIME_ELAPSED is not used: llvmpipe's rasteriser runs on after a query ends; measured, a lighting
+// pass of 0.5 ms read 430 ms).
 struct ShellTimings {
     double shadows_ms = 0;  // wall time of the shadow pass (glFinish); 0 when cached
-    double lighting_ms = 0, shells_ms = 0;
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact compositing's resolve (timed, Compositing::exact)
 };

@@ -17,9 +17,6 @@ constexpr int kFirstLutUnit = 0;
 struct Vertex {
     glm::vec3 position, tangent;
 };
-struct GpuLight {
-    glm::vec4 direction_lambda, radiance;
-};
 
 }  // namespace
 
@@ -67,15 +64,8 @@ StrandRenderer::StrandRenderer(const Strands& strands)
 }
 
 void StrandRenderer::set_lights(std::span<const SrbfLight> lights) {
-    std::vector<GpuLight> gpu;
-    gpu.reserve(lights.size());
-    for (const SrbfLight& l : lights) {
-        shading::validate_light(l.lambda, l.omega, "SRBF light");
-        gpu.push_back({glm::vec4(glm::normalize(l.omega), l.lambda), glm::vec4(l.L, 0.0f)});
-    }
-    const GpuLight none{};  // a zero-size buffer cannot be bound
-    lights_ = gpu.empty() ? make_buffer(&none, sizeof none) : make_buffer(gpu.data(), gpu.size() * sizeof(GpuLight));
-    light_count_ = static_cast<int>(gpu.size());
+    lights_ = make_lights_buffer(lights);
+    light_count_ = static_cast<int>(lights.size());
 }
 
 float StrandRenderer::fiber_radius(const StrandSettings& s) const {

@@ -73,8 +73,8 @@ void add_render(CLI::App& root) {
                        "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) round(sqrt(N))^2 "
                        "frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")->check(CLI::Range(1, 16))->capture_default_str();
     render->add_option("--compositing", o->compositing,
-                       "exact (per-pixel fragment lists sorted on the GPU, 1 sample: the default), sorted (clusters "
-                       "back to front, blended; MSAA applies), or unsorted; overrides the --params key")
+                       "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), sorted "
+                       "(clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
         ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
     render->add_flag("--aovs", o->aovs,
@@ -169,13 +169,33 @@ void add_render(CLI::App& root) {
                      o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, scene.lights.size(), camera.width,
                      camera.height, scene.context->renderer().c_str(), render_ms, t.lighting_wall_ms, t.shells_wall_ms,
                      st.prepare_seconds, o->output.c_str());
-        if (settings.compositing == coif::gl::Compositing::exact && settings.samples > 1) {
-            const int f = static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples))));
+        if (const int f = coif::gl::supersampling(settings); f > 1)
             std::fprintf(stderr, "antialiased: %d frames shifted within the pixel, averaged (--samples %d; 1 for one frame)\n",
-                         std::clamp(f, 1, 4) * std::clamp(f, 1, 4), settings.samples);
-        }
+                         f * f, settings.samples);
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d\n", st.re_norm, st.atlas_width, st.atlas_height);
-        if (o->aovs) {
+        if (settings.shadows) {
+            double direct = 0, fibres = 0;
+            const std::vector<glm::vec2> sh = renderer.read_shadows();
+            for (const glm::vec2& v : sh) {
+                direct += v.x;
+                fibres += v.y;
+            }
+            const double n = std::max<std::size_t>(1, sh.size());
+            std::fprintf(stderr,
+                         "shadows between clusters: grid %dx%dx%d of %.3g (%zu strands), pass %.1f ms; over %zu "
+                         "samples x lights: mean unoccluded fraction %.3f, mean fibres met %.2f\n",
+                         st.grid_x, st.grid_y, st.grid_z, st.voxel, st.shadow_strands, renderer.timings().shadows_ms,
+                         sh.size(), direct / n, fibres / n);
+        }
+        if (settings.compositing == coif::gl::Compositing::exact) {
+            const coif::gl::FragmentListStats fl = renderer.fragment_list_stats();
+            std::fprintf(stderr, "exact compositing: %llu fragments (%llu dropped), %llu pixels over the resolve's %d, resolve %.1f ms "
+                                 "wall-clock (last frame)\n",
+                         static_cast<unsigned long long>(fl.fragments), static_cast<unsigned long long>(fl.dropped),
+                         static_cast<unsigned long long>(fl.pixels_over_resolve_limit), coif::gl::kResolveFragments,
+                         renderer.timings().resolve_wall_ms);
+        }
+        if (o->aovs) {  // after the figures above, which are the image's own
             const std::filesystem::path out(o->output);
             struct Aov {
                 const char* name;
@@ -197,26 +217,6 @@ void add_render(CLI::App& root) {
                 coif::write_image(path, renderer.render(camera, aov), aw);
                 std::fprintf(stderr, "AOV %-8s -> %s\n", a.name, path.c_str());
             }
-        }
-        if (settings.shadows) {
-            double direct = 0, fibres = 0;
-            const std::vector<glm::vec2> sh = renderer.read_shadows();
-            for (const glm::vec2& v : sh) {
-                direct += v.x;
-                fibres += v.y;
-            }
-            const double n = std::max<std::size_t>(1, sh.size());
-            std::fprintf(stderr,
-                         "shadows between clusters: grid %dx%dx%d of %.3g (%zu strands), pass %.1f ms; over %zu "
-                         "samples x lights: mean unoccluded fraction %.3f, mean fibres met %.2f\n",
-                         st.grid_x, st.grid_y, st.grid_z, st.voxel, st.shadow_strands, renderer.timings().shadows_ms,
-                         sh.size(), direct / n, fibres / n);
-        }
-        if (settings.compositing == coif::gl::Compositing::exact) {
-            const coif::gl::FragmentListStats fl = renderer.fragment_list_stats();
-            std::fprintf(stderr, "exact compositing: %llu fragments (%llu dropped), %llu pixels over the resolve's %d, resolve %.1f ms\n",
-                         static_cast<unsigned long long>(fl.fragments), static_cast<unsigned long long>(fl.dropped),
-                         static_cast<unsigned long long>(fl.pixels_over_resolve_limit), coif::gl::kResolveFragments, fl.resolve_ms);
         }
     });
 }
