@@ -1,12 +1,13 @@
 # coif_add_module(<folder> DEPS <targets...>)
-# One library per source folder: coif_<folder>, alias coif::<alias>. Sources are globbed, so adding
+# One library per source folder: coif_<alias>, alias coif::<alias>. The folder's own .cpp files are globbed
+# (not its subfolders: a subfolder with a CMakeLists.txt is a library of its own, e.g. models/core), so adding
 # a file to a folder needs no edit here. A folder with no .cpp yet is an INTERFACE library.
 function(coif_add_module folder)
   cmake_parse_arguments(ARG "" "ALIAS" "DEPS" ${ARGN})
   if(NOT ARG_ALIAS)
     set(ARG_ALIAS ${folder})
   endif()
-  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
   set(target coif_${ARG_ALIAS})
   if(sources)
     add_library(${target} STATIC ${sources})
