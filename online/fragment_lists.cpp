@@ -136,13 +136,8 @@ void FragmentLists::reserve(std::uint64_t nodes) {
 
 void FragmentLists::begin(int width, int height) {
     if (width != width_ || height != height_) {
-        GLuint id = 0;
-        glCreateTextures(GL_TEXTURE_2D, 1, &id);
-        heads_ = Texture(id);
-        glTextureStorage2D(id, 1, GL_R32UI, width, height);
-        glCreateTextures(GL_TEXTURE_2D, 1, &id);
-        resolved_ = Texture(id);
-        glTextureStorage2D(id, 1, GL_RGBA32F, width, height);
+        heads_ = make_texture_2d(GL_R32UI, width, height);
+        resolved_ = make_texture_2d(GL_RGBA32F, width, height);
         glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
         glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
         glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_SAMPLES, 0);

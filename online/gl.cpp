@@ -33,16 +33,39 @@ Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags) {
     return Buffer(id);
 }
 
-Texture make_lut_texture(const shading::LutImage& img) {
+void set_sampling(const Texture& texture, Sampling sampling) {
+    const GLuint id = texture.id();
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(sampling.filter));
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(sampling.filter));
+    for (const GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(id, axis, static_cast<GLint>(sampling.wrap));
+    if (sampling.wrap == GL_CLAMP_TO_BORDER) {
+        const float zero[4] = {0, 0, 0, 0};
+        glTextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, zero);
+    }
+}
+
+Texture make_texture_2d(GLenum internal_format, int width, int height, std::optional<Sampling> sampling) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     Texture t(id);
-    glTextureStorage2D(id, 1, GL_RGBA32F, img.width, img.height);
-    glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.texels.data());
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureStorage2D(id, 1, internal_format, width, height);
+    if (sampling) set_sampling(t, *sampling);
+    return t;
+}
+
+Texture make_texture_3d(GLenum internal_format, glm::ivec3 size, std::optional<Sampling> sampling) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_3D, 1, &id);
+    Texture t(id);
+    glTextureStorage3D(id, 1, internal_format, size.x, size.y, size.z);
+    if (sampling) set_sampling(t, *sampling);
+    return t;
+}
+
+Texture make_lut_texture(const shading::LutImage& img) {
+    Texture t = make_texture_2d(GL_RGBA32F, img.width, img.height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+    glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, img.texels.data());
     return t;
 }
 
@@ -163,9 +186,7 @@ RenderTarget::RenderTarget(int width, int height, GLenum color_format, int sampl
     if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw Error::parameter("render target", "framebuffer is incomplete");
     if (samples > 1) {
-        glCreateTextures(GL_TEXTURE_2D, 1, &id);
-        resolve_color_ = Texture(id);
-        glTextureStorage2D(id, 1, color_format, width, height);
+        resolve_color_ = make_texture_2d(color_format, width, height);
         glCreateFramebuffers(1, &id);
         resolve_fbo_ = Framebuffer(id);
         glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, resolve_color_.id(), 0);

@@ -2,6 +2,8 @@
 // Thin RAII owners of GL objects and the program builder. Everything GL in coif goes through
 // online/; models/, shaders/ (C++ side), offline/ and db/ never include GL.
 #include <epoxy/gl.h>
+#include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +53,18 @@ VertexArray make_vertex_array();
 // Enables float attribute `location` of `vao`: `components` floats at `offset` in the vertex buffer
 // bound to `binding`.
 void float_attribute(GLuint vao, GLuint location, GLint components, std::size_t offset, GLuint binding);
+// How a texture is sampled: one filter for minification and magnification (no mipmaps), one wrap mode
+// for every axis (GL_CLAMP_TO_BORDER borders are zero).
+struct Sampling {
+    GLenum filter = GL_LINEAR;
+    GLenum wrap = GL_CLAMP_TO_EDGE;
+};
+// Immutable storage of one level; `sampling` set when given (else GL's defaults, for image-only use).
+Texture make_texture_2d(GLenum internal_format, int width, int height, std::optional<Sampling> sampling = std::nullopt);
+Texture make_texture_3d(GLenum internal_format, glm::ivec3 size, std::optional<Sampling> sampling = std::nullopt);
+// Sets the filter and wrap of `texture` (2D or 3D).
+void set_sampling(const Texture& texture, Sampling sampling);
+
 // A lighting table (shaders/lut.h) as an RGBA32F texture with linear filtering and clamped edges,
 // the sampling its C++ twin reproduces.
 Texture make_lut_texture(const shading::LutImage& image);

@@ -4,17 +4,14 @@
 // within-cluster shadow of 004 eq. 12, and alpha compositing (004 eq. 14). docs/renderer.md states
 // the choices and their measured cost and error.
 //
-// Once per hairstyle (constructor):
-//   - layer meshes of every prototype cluster (models/generalized_disk.h) in one vertex buffer; each
-//     cluster (prototype or instance) is one GL instance: its placement and the scene orientation
-//     are a model matrix in an SSBO, so instances share their prototype's meshes and sectors;
-//   - per sector: density features → FLANN look-up (db/satf.h, `match_all`, DESIGN.md decision 2),
-//     kept as the `neighbours` best record ids and weights, plus Σ of the outer layers' mean α
-//     (004 eq. 12's sum; the view-averaged α of each outer sector);
-//   - the database's records as a texture atlas (3 RGBA16F tiles of views × X per record: α, then
-//     the 9 Fourier coefficients of re in θl), so x and θv are interpolated by the bilinear fetch;
-//   - lighting samples along each cluster's axis (position, tangent, frame normal).
-// Per frame: a compute pass evaluates the SRBF lighting per lighting sample and light and folds it
+// Once per hairstyle (constructor), on the CPU (GL-free, online/shells/):
+//   - prepared_shells.h: the prototypes' layer meshes, their sectors' SATF look-ups and shadow sums, and
+//     every cluster's placement (one GL instance each) and lighting samples along its axis;
+//   - record_atlas.h: the database's records as one RGBA8 texture atlas (layout shaders/gl/record_atlas.glsl),
+//     so x and θv are interpolated by the bilinear fetch;
+//   - shadow_grid.h: the style's strands voxelized for the shadows between clusters;
+// then uploaded (online/shell_passes.h ShellGpu).
+// Per frame (online/shell_passes.h): a compute pass evaluates the SRBF lighting per lighting sample and light and folds it
 // into the 9 Fourier sums of DESIGN.md decision 1 (shaders/gl/shell_lighting.comp); then the shells
 // are composited (004 eq. 14) as ShellSettings::compositing says (decision 4, docs/renderer.md):
 //   exact     (default) every fragment appended to per-pixel lists (online/fragment_lists.h), sorted
@@ -27,7 +24,7 @@
 // Nothing per frame runs on the CPU beyond the sort and the draw calls.
 //
 // Shadows between clusters (DESIGN.md decision 5): the style's strands (models/style_strands.h)
-// voxelized once into an optical-density grid (online/shadow_grid.h), a 3D texture; a compute pass
+// voxelized once into an optical-density grid (online/shells/shadow_grid.h), a 3D texture; a compute pass
 // (shaders/gl/shell_shadow.comp) marches it from every lighting sample towards every light for T̃ and
 // the fibres met n, rerun only when the lights or κ change; the lighting pass reads them
 // (shaders/lighting/srbf_shadowed.glsl).
@@ -54,15 +51,10 @@
 #include "models/strands.h"
 #include "offline/srbf_lights.h"
 #include "online/fragment_lists.h"
-#include "online/gl.h"
+#include "online/shells/prepared_shells.h"
 #include "online/shells/shell_settings.h"
-#include "shaders/lighting.h"
 
 namespace coif::gl {
-
-// The rotation that turns the style's mean root→tip direction (from its clusters' axes) to −y
-// (models/strands.h hang_axis_rotation): identity for y-up styles.
-glm::mat3 style_orientation(const HairStyle& style);
 
 struct ShellStats {
     std::size_t clusters = 0, prototypes = 0, sectors = 0, triangles = 0, lighting_samples = 0, records = 0;
@@ -124,6 +116,8 @@ public:
     // The lighting samples (world position, tangent, frame normal r0) in cluster-major order.
     std::vector<glm::vec3> lighting_sample(std::size_t index) const;
     const ShellTimings& timings() const { return timings_; }
+    // The CPU-side preparation the GPU copy was made from (online/shells/prepared_shells.h).
+    const PreparedShells& prepared() const;
     // Bounds of the placed outer layers (world, oriented).
     glm::vec3 bounds_min() const { return bounds_min_; }
     glm::vec3 bounds_max() const { return bounds_max_; }

@@ -131,7 +131,7 @@ void add_bench_render(CLI::App& root) {
         bench_scene(o->scene.style, 0.0, *scene.renderer, scene.camera);
         for (const BenchScene& sc : models) {
             coif::Strands sampled;
-            coif::gl::ShellRenderer renderer(sc.style, scene.satf, coif::gl::style_orientation(sc.style), o->lighting_rows,
+            coif::gl::ShellRenderer renderer(sc.style, scene.satf, coif::style_orientation(sc.style), o->lighting_rows,
                                              &sampled);
             renderer.set_lights(scene.lights);
             const coif::Camera cam = o->scene.camera_for(o->scene.oriented(std::move(sampled)));

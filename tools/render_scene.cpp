@@ -103,7 +103,7 @@ ShellScene::ShellScene(const SceneOptions& scene, SceneInputs inputs, const std:
       satf(SatfIndex::open(db, SatfOptions{})),
       context(gl::Context::headless()) {
     Strands sampled;
-    renderer = std::make_unique<gl::ShellRenderer>(style, satf, gl::style_orientation(style), lighting_rows, &sampled);
+    renderer = std::make_unique<gl::ShellRenderer>(style, satf, style_orientation(style), lighting_rows, &sampled);
     renderer->set_lights(lights);
     if (absorption) renderer->set_absorption(absorption);
     camera = shell_camera(scene, std::move(sampled));

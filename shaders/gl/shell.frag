@@ -1,5 +1,5 @@
 // One fragment of a SATF layer mesh, blended premultiplied "over" (ONE, ONE_MINUS_SRC_ALPHA) in the
-// draw order of online/shell_renderer.cpp; the shading itself is shell_shade.glsl.
+// draw order of online/shell_passes.cpp (ShellsPass); the shading itself is shell_shade.glsl.
 #include "shaders/gl/shell_shade.glsl"
 
 in vec3 v_position;

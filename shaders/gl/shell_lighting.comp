@@ -13,12 +13,7 @@
 
 layout(local_size_x = 32) in;
 
-struct LightingSample {
-    vec4 position;
-    vec4 tangent;
-    vec4 normal;
-};
-layout(std430, binding = 2) readonly buffer Samples { LightingSample samples[]; };
+#include "shaders/gl/lighting_samples.glsl"
 layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
 
 uniform int u_sample_count;

@@ -13,7 +13,7 @@
 //   output   premultiplied: re already carries the coverage (planar tracer, 004 eq. 5), so the
 //            colour is lighting · re / re_norm · τ and the blend is (ONE, ONE_MINUS_SRC_ALPHA).
 //
-// Compile-time variants (online/shell_renderer.cpp builds one program per set; llvmpipe runs every
+// Compile-time variants (online/shell_passes.cpp ShellsPass builds one program per set; llvmpipe runs every
 // branch of a shader under masks, so a uniform switch costs its whole code in every fragment):
 //   SHELL_NEIGHBOURS  records blended per sector, 1..4
 //   SHELL_LIGHTING    0: the lighting sums fetched per fragment (any number of lighting rows);
@@ -31,6 +31,7 @@
 #define COIF_SHADERS_GL_SHELL_SHADE_GLSL
 
 #include "shaders/gl/sector_frame.glsl"
+#include "shaders/gl/record_atlas.glsl"
 
 #ifndef SHELL_NEIGHBOURS
 #define SHELL_NEIGHBOURS 2
@@ -66,9 +67,9 @@ struct ShellSector {
 };
 layout(std430, binding = 1) readonly buffer Sectors { ShellSector sectors[]; };
 
-uniform sampler2D u_records;       // record atlas: per record 3 tiles of views × X texels + 1 border
-uniform vec4 u_atlas_lo[3];        // per tile part and channel: value = lo + scale · texel (the RGBA8
-uniform vec4 u_atlas_scale[3];     // atlas's ranges, online/shell_renderer.cpp)
+uniform sampler2D u_records;       // record atlas (layout: shaders/gl/record_atlas.glsl)
+uniform vec4 u_atlas_lo[ATLAS_PARTS];     // per tile part and channel: value = lo + scale · texel (the RGBA8
+uniform vec4 u_atlas_scale[ATLAS_PARTS];  // atlas's ranges, online/shells/record_atlas.h)
 uniform int u_tiles_per_row;
 uniform vec2 u_atlas_inv_size;
 uniform int u_views;
@@ -84,9 +85,7 @@ uniform vec3 u_eye;
 const float TWO_PI = 6.28318530718;
 
 vec4 atlas_fetch(uint tile, vec2 p) {
-    uint tx = tile % uint(u_tiles_per_row);
-    uint ty = tile / uint(u_tiles_per_row);
-    vec2 origin = vec2(float(tx) * float(u_hrir_length + 2), float(ty) * float(u_views + 2)) + 1.0;
+    vec2 origin = atlas_tile_origin(tile, u_tiles_per_row, u_hrir_length, u_views);
     return textureLod(u_records, (origin + p) * u_atlas_inv_size, 0.0);
 }
 
@@ -100,7 +99,7 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
     float wsum = 0.0;
     for (int n = 0; n < SHELL_NEIGHBOURS; ++n) {
         float w = s.weight[n];
-        uint base = s.id[n] * 3u;
+        uint base = s.id[n] * uint(ATLAS_PARTS);
         t0 += w * atlas_fetch(base, p);
 #if SHELL_FOURIER >= 2
         t1 += w * atlas_fetch(base + 1u, p);

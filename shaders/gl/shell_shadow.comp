@@ -1,7 +1,7 @@
 // Shadows between clusters (DESIGN.md decision 5) for the shell renderer's lighting pass: per
 // lighting sample and SRBF light, the light's unoccluded fraction T̃ and the fibres met n on the way
 // (shaders/lighting/srbf_shadowed.glsl), marched through the hair's optical-density grid
-// (online/shadow_grid.h). They depend on the hair, the lights and κ only — not on the view or the
+// (online/shells/shadow_grid.h). They depend on the hair, the lights and κ only — not on the view or the
 // scattering parameters — so the renderer runs this pass when those change, not every frame.
 //
 // The light's lobe is sampled by `u_rays` rays: its centre and a ring of u_rays − 1 directions at
@@ -16,12 +16,7 @@
 // two against the reference: from the axis is much closer.
 layout(local_size_x = 64) in;
 
-struct LightingSample {
-    vec4 position;  // w: outer radius of the cluster at the sample (world units)
-    vec4 tangent;
-    vec4 normal;
-};
-layout(std430, binding = 2) readonly buffer Samples { LightingSample samples[]; };
+#include "shaders/gl/lighting_samples.glsl"
 struct GpuLight {
     vec4 direction_lambda;
     vec4 radiance;

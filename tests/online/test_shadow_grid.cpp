@@ -1,11 +1,11 @@
-// The optical-density grid of the shell renderer's shadows between clusters (online/shadow_grid.h).
+// The optical-density grid of the shell renderer's shadows between clusters (online/shells/shadow_grid.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "models/core/error.h"
-#include "online/shadow_grid.h"
+#include "online/shells/shadow_grid.h"
 
 namespace coif {
 namespace {

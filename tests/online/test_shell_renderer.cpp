@@ -11,7 +11,7 @@
 #include "models/core/error.h"
 #include "online/gl_context.h"
 #include "models/style_strands.h"
-#include "online/shadow_grid.h"
+#include "online/shells/shadow_grid.h"
 #include "online/shell_renderer.h"
 #include "shaders/lighting.h"
 #include "tests/common/run.h"
@@ -100,7 +100,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     const std::vector<glm::vec2> sh = renderer.read_shadows();
     const int rows = renderer.lighting_rows();
     ASSERT_EQ(sh.size(), static_cast<std::size_t>(2 * rows));
-    // Against the same march on the CPU through the same grid (online/shadow_grid.h from the same
+    // Against the same march on the CPU through the same grid (online/shells/shadow_grid.h from the same
     // seeded strands): the GPU fetches trilinearly with 8-bit sub-texel weights, so 3 %. The grid's
     // own accuracy is tested in test_shadow_grid.cpp; here the analytic value is only a sanity bound:
     // a diameter of c0 holds 1.6 cm of density 2, n = 0.6 · 2 · 1.6 / 0.05 = 38.4, but the grid holds a

@@ -1,4 +1,4 @@
-#include "online/shadow_grid.h"
+#include "online/shells/shadow_grid.h"
 
 #include <algorithm>
 #include <cmath>

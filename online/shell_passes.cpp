@@ -1,0 +1,275 @@
+#include "online/shell_passes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <glm/gtc/matrix_transform.hpp>
+#include <numeric>
+
+#include "models/core/error.h"
+
+namespace coif::gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double wall_ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+// ---- ShellGpu --------------------------------------------------------------------------------------
+
+ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const DensityGrid& grid, const std::string& db_path)
+    : layout(shells.layout),
+      sample_count(shells.samples.size()),
+      clusters(shells.clusters()),
+      lighting_rows(shells.lighting_rows),
+      atlas_width(a.width),
+      atlas_height(a.height),
+      tiles_per_row(a.tiles_per_row),
+      views(a.views),
+      hrir_length(a.hrir_length),
+      atlas_lo(a.lo),
+      atlas_scale(a.scale),
+      re_norm(a.re_norm),
+      grid_origin(grid.origin),
+      grid_extent(grid.extent()),
+      voxel(grid.voxel) {
+    GLint max_tex = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
+    if (a.width > max_tex || a.height > max_tex)
+        throw Error(db_path, "records",
+                    "the record atlas (" + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                        ") exceeds this GPU's texture size " + std::to_string(max_tex));
+    atlas = make_texture_2d(GL_RGBA8, a.width, a.height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+    glTextureSubImage2D(atlas.id(), 0, 0, 0, a.width, a.height, GL_RGBA, GL_UNSIGNED_BYTE, a.texels.data());
+
+    density = make_texture_3d(GL_R32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(density.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RED, GL_FLOAT, grid.values.data());
+
+    vertices = make_buffer(shells.vertices.data(), shells.vertices.size() * sizeof(ShellVertex));
+    indices = make_buffer(shells.indices.data(), shells.indices.size() * sizeof(std::uint32_t));
+    cluster_ids = make_buffer(shells.cluster_ids.data(), shells.cluster_ids.size() * sizeof(std::uint32_t));
+    instances = make_buffer(shells.instances.data(), shells.instances.size() * sizeof(ShellInstance));
+    sectors = make_buffer(shells.sectors.data(), shells.sectors.size() * sizeof(ShellSector));
+    samples = make_buffer(shells.samples.data(), shells.samples.size() * sizeof(LightingSample));
+    vao = make_vertex_array();
+    const GLuint v = vao.id();
+    glVertexArrayVertexBuffer(v, 0, vertices.id(), 0, sizeof(ShellVertex));
+    glVertexArrayVertexBuffer(v, 1, cluster_ids.id(), 0, sizeof(std::uint32_t));
+    glVertexArrayBindingDivisor(v, 1, 1);
+    glVertexArrayElementBuffer(v, indices.id());
+    float_attribute(v, 0, 3, offsetof(ShellVertex, position), 0);
+    float_attribute(v, 1, 3, offsetof(ShellVertex, tangent), 0);
+    float_attribute(v, 2, 3, offsetof(ShellVertex, normal), 0);
+    float_attribute(v, 3, 2, offsetof(ShellVertex, texcoord), 0);
+    float_attribute(v, 4, 3, offsetof(ShellVertex, axis_normal), 0);
+    glEnableVertexArrayAttrib(v, 5);
+    glVertexArrayAttribIFormat(v, 5, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(v, 5, 1);
+
+    lighting = make_texture_2d(GL_RGBA32F, lighting_rows, static_cast<int>(clusters * kLightingTexels),
+                               Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+    check_errors("ShellGpu upload");
+}
+
+void ShellGpu::set_lights(std::span<const SrbfLight> l) {
+    lights = make_lights_buffer(l);
+    light_count = static_cast<int>(l.size());
+    shadows = make_buffer(nullptr, l.size() * sample_count * sizeof(glm::vec2));
+}
+
+void ShellGpu::set_absorption(const AbsorptionMap* map) {
+    if (!map) {
+        absorption_on = false;
+        return;
+    }
+    const int n = static_cast<int>(clusters);
+    if (map->clusters != n || map->samples < 1)
+        throw Error::parameter("absorption map", "has " + std::to_string(map->clusters) + " cluster rows; the style has " +
+                                                     std::to_string(n));
+    std::vector<glm::vec4> texels(static_cast<std::size_t>(n) * lighting_rows);
+    for (int c = 0; c < n; ++c)
+        for (int r = 0; r < lighting_rows; ++r)
+            texels[static_cast<std::size_t>(c) * lighting_rows + r] =
+                glm::vec4(map->sample(c, static_cast<double>(r) / (lighting_rows - 1)), 0.0f);
+    // Read with texelFetch; the wrap is GL's default.
+    absorption = make_texture_2d(GL_RGBA32F, lighting_rows, n, Sampling{GL_NEAREST, GL_REPEAT});
+    glTextureSubImage2D(absorption.id(), 0, 0, 0, lighting_rows, n, GL_RGBA, GL_FLOAT, texels.data());
+    absorption_on = true;
+    check_errors("ShellGpu::set_absorption");
+}
+
+// ---- ShadowPass ------------------------------------------------------------------------------------
+
+double ShadowPass::run(const ShellGpu& gpu, float kappa, bool own_cluster) const {
+    glFinish();
+    const auto t0 = Clock::now();
+    const Program& p = program_;
+    p.use();
+    glBindTextureUnit(0, gpu.density.id());
+    glUniform1i(p.uniform("u_density"), 0);
+    glUniform3fv(p.uniform("u_grid_min"), 1, &gpu.grid_origin.x);
+    glUniform3fv(p.uniform("u_grid_extent"), 1, &gpu.grid_extent.x);
+    glUniform1f(p.uniform("u_step"), gpu.voxel);
+    glUniform1f(p.uniform("u_kappa"), kappa);
+    glUniform1i(p.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
+    glUniform1i(p.uniform("u_light_count"), gpu.light_count);
+    glUniform1i(p.uniform("u_rays"), kShadowRays);
+    glUniform1i(p.uniform("u_own"), own_cluster ? 1 : 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
+    const std::size_t pairs = gpu.sample_count * static_cast<std::size_t>(gpu.light_count);
+    glDispatchCompute(static_cast<GLuint>((pairs + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glFinish();
+    return wall_ms(t0);
+}
+
+// ---- LightingPass ----------------------------------------------------------------------------------
+
+void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const ShellSettings& s) const {
+    tables_.bind(prog, 2);
+    set_lighting_uniforms(prog, s.hair, s.config);
+    glUniform1i(prog.uniform("u_light_count"), gpu.light_count);
+    glUniform1i(prog.uniform("u_lobes"), s.lobes);
+    glUniform1i(prog.uniform("u_multiple"), s.multiple ? 1 : 0);
+    glUniform1i(prog.uniform("u_shadows"), s.shadows && gpu.light_count > 0 ? 1 : 0);
+    glUniform1i(prog.uniform("u_absorption_on"), gpu.absorption_on ? 1 : 0);
+    if (gpu.absorption_on) {
+        glBindTextureUnit(2 + shading::kLutCount, gpu.absorption.id());
+        glUniform1i(prog.uniform("u_absorption"), 2 + shading::kLutCount);
+    }
+    glUniform1f(prog.uniform("u_d_f"), s.d_f);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
+}
+
+void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera) {
+    tables_.update(s.hair, s.config);  // validates; rebuilds only on a change
+    program_.use();
+    bind_inputs(program_, gpu, s);
+    glUniform1i(program_.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
+    glUniform1i(program_.uniform("u_rows"), gpu.lighting_rows);
+    glUniform3fv(program_.uniform("u_eye"), 1, &camera.eye.x);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
+    glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(static_cast<GLuint>((gpu.sample_count + 31) / 32), 1, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+// ---- ShellsPass ------------------------------------------------------------------------------------
+
+const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& L) {
+    // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
+    // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
+    const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
+    const std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
+                                           "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
+                                           "SHELL_FOURIER " + std::to_string(s.fourier_order)};
+    std::string key = abuffer ? "abuffer" : "blend";
+    for (const std::string& d : defines) key += "|" + d;
+    auto& slot = programs_[key];
+    if (!slot)
+        slot = std::make_unique<Program>(
+            std::vector<std::string>{"shaders/gl/shell.vert", abuffer ? "shaders/gl/shell_abuffer.frag" : "shaders/gl/shell.frag"},
+            defines);
+    return *slot;
+}
+
+double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const Camera& camera, const ShellSettings& s,
+                        glm::vec2 jitter, bool floor_only, const LightingPass& lighting) {
+    const DiskLayout& L = gpu.layout;
+    const bool exact = !floor_only && s.compositing == Compositing::exact;
+    if (exact && !lists_) lists_ = std::make_unique<FragmentLists>();
+    const Program& prog = floor_only ? floor_ : shading_program(exact, s, gpu.lighting_rows, L);
+    prog.use();
+    // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
+    const glm::vec3 shift(2.0f * jitter.x / camera.width, -2.0f * jitter.y / camera.height, 0.0f);
+    const glm::mat4 vp = glm::translate(glm::mat4(1.0f), shift) * camera.projection() * camera.view();
+    glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
+    if (!floor_only) {
+        glBindTextureUnit(0, gpu.atlas.id());
+        glBindTextureUnit(1, gpu.lighting.id());
+        glUniform1i(prog.uniform("u_records"), 0);
+        glUniform1i(prog.uniform("u_lighting"), 1);
+        glUniform1i(prog.uniform("u_tiles_per_row"), gpu.tiles_per_row);
+        glUniform2f(prog.uniform("u_atlas_inv_size"), 1.0f / gpu.atlas_width, 1.0f / gpu.atlas_height);
+        glUniform1i(prog.uniform("u_views"), gpu.views);
+        glUniform4fv(prog.uniform("u_atlas_lo"), kAtlasParts, &gpu.atlas_lo[0].x);
+        glUniform4fv(prog.uniform("u_atlas_scale"), kAtlasParts, &gpu.atlas_scale[0].x);
+        glUniform1i(prog.uniform("u_hrir_length"), gpu.hrir_length);
+        glUniform1i(prog.uniform("u_lighting_rows"), gpu.lighting_rows);
+        glUniform1i(prog.uniform("u_lighting_height"), static_cast<GLint>(gpu.clusters * kLightingTexels));
+        glUniform1i(prog.uniform("u_s_t"), L.s_t);
+        glUniform1i(prog.uniform("u_s_u"), L.s_u);
+        glUniform1i(prog.uniform("u_layers"), L.layers);
+        glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
+        glUniform1f(prog.uniform("u_re_scale"), 1.0f / gpu.re_norm);
+        glUniform3fv(prog.uniform("u_eye"), 1, &camera.eye.x);
+        if (s.lighting_per_fragment) lighting.bind_inputs(prog, gpu, s);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.instances.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.sectors.id());
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    GLint target_framebuffer = 0;
+    if (exact) {  // append every fragment to its pixel's list; no blending, no colour output
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
+        lists_->begin(camera.width, camera.height);
+        glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));
+        glDisable(GL_BLEND);
+    } else {
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over" (004 eq. 14)
+    }
+    glEnable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
+    glBindVertexArray(gpu.vao.id());
+
+    std::vector<std::size_t> order(shells.clusters());
+    std::iota(order.begin(), order.end(), 0);
+    if (s.compositing == Compositing::sorted) {
+        std::vector<float> dist(order.size());
+        for (std::size_t c = 0; c < order.size(); ++c) dist[c] = glm::distance(camera.eye, shells.cluster_centre[c]);
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
+    }
+    const GLint layer_loc = floor_only ? -1 : prog.uniform("u_layer");
+    const auto draw_layer = [&](std::size_t c, int j) {
+        const MeshRange& r = shells.meshes[shells.cluster_proto[c]][static_cast<std::size_t>(j)];
+        if (layer_loc >= 0) glUniform1i(layer_loc, j);
+        glDrawElementsInstancedBaseVertexBaseInstance(
+            GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
+            static_cast<GLuint>(c));
+    };
+    for (std::size_t c : order) {
+        glCullFace(GL_FRONT);  // back faces (far side, seen through the core): outer → inner
+        for (int j = L.layers - 1; j >= 0; --j) draw_layer(c, j);
+        glCullFace(GL_BACK);   // front faces: inner → outer
+        for (int j = 0; j < L.layers; ++j) draw_layer(c, j);
+    }
+    glBindVertexArray(0);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    double resolve_ms = 0;
+    if (exact) {  // the per-pixel sort and "over" of the lists, into the caller's framebuffer
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        Clock::time_point t_resolve;
+        if (s.timed) {
+            glFinish();
+            t_resolve = Clock::now();
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target_framebuffer));
+        glViewport(0, 0, camera.width, camera.height);
+        lists_->resolve(s.background);
+        if (s.timed) {
+            glFinish();
+            resolve_ms = wall_ms(t_resolve);
+        }
+    }
+    glDepthMask(GL_TRUE);
+    return resolve_ms;
+}
+
+}  // namespace coif::gl

@@ -1,0 +1,99 @@
+#pragma once
+// The shell renderer's GPU half (online/shell_renderer.h is the facade): the GPU copy of a prepared hairstyle
+// and the passes that draw it, each with its own programs and uniforms.
+//   ShellGpu      the buffers and textures of online/shells/prepared_shells.h, record_atlas.h and shadow_grid.h,
+//                 the lights and their shadows, the lighting pass's output, the painted absorption;
+//   ShadowPass    T̃, n per lighting sample and light, marched through the density grid (decision 5,
+//                 shaders/gl/shell_shadow.comp); run only when the lights or κ change;
+//   LightingPass  the SRBF lighting per lighting sample folded into the 9 Fourier sums of decision 1
+//                 (shaders/gl/shell_lighting.comp);
+//   ShellsPass    every cluster's layers, blended (sorted, unsorted) or appended to the fragment lists and
+//                 resolved (exact; online/fragment_lists.h), with the shading compiled per variant.
+#include <array>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "models/core/camera.h"
+#include "models/absorption_map.h"
+#include "online/fragment_lists.h"
+#include "online/gl.h"
+#include "online/lighting_uniforms.h"
+#include "online/shells/prepared_shells.h"
+#include "online/shells/record_atlas.h"
+#include "online/shells/shadow_grid.h"
+#include "online/shells/shell_settings.h"
+
+namespace coif::gl {
+
+inline constexpr int kLightingTexels = 7;  // RGBA texels of the 27 floats C_k, S_k per lighting sample
+inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
+
+struct ShellGpu {
+    // Needs a current GL 4.5 context; throws coif::Error if the atlas exceeds the GPU's texture size.
+    ShellGpu(const PreparedShells& shells, const RecordAtlas& atlas, const DensityGrid& grid, const std::string& db_path);
+
+    DiskLayout layout;
+    VertexArray vao;
+    Buffer vertices, indices, cluster_ids, instances, sectors, samples;
+    std::size_t sample_count = 0, clusters = 0;
+    int lighting_rows = 0;
+    Texture atlas;  // RGBA8 (online/shells/record_atlas.h)
+    int atlas_width = 1, atlas_height = 1, tiles_per_row = 1, views = 0, hrir_length = 0;
+    std::array<glm::vec4, kAtlasParts> atlas_lo{}, atlas_scale{};
+    float re_norm = 1;
+    Texture density;  // R32F shadow grid, zero outside
+    glm::vec3 grid_origin{0.0f}, grid_extent{0.0f};
+    float voxel = 1;
+    Texture lighting;  // RGBA32F, lighting_rows × clusters · kLightingTexels: the lighting pass's sums
+    Buffer lights, shadows;  // shaders/gl/srbf_lights.glsl lights; (T̃, n) per sample and light
+    int light_count = 0;
+    Texture absorption;  // RGBA32F σa per (lighting row, cluster), when absorption_on
+    bool absorption_on = false;
+
+    void set_lights(std::span<const SrbfLight> lights);
+    void set_absorption(const AbsorptionMap* map);
+};
+
+class ShadowPass {
+public:
+    // Writes gpu.shadows; returns its wall time in ms (glFinish before and after: it runs only when the lights
+    // change, so the synchronisation costs nothing per frame, and llvmpipe's timer queries miss this dispatch).
+    double run(const ShellGpu& gpu, float kappa, bool own_cluster) const;
+
+private:
+    Program program_{{"shaders/gl/shell_shadow.comp"}};
+};
+
+class LightingPass {
+public:
+    // Writes gpu.lighting for the eye of `camera`.
+    void run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera);
+    // The uniforms and bindings that the lighting pass and the per-fragment lighting reference
+    // (ShellSettings::lighting_per_fragment) read: the tables, the parameters, the lights, their shadows, σa.
+    void bind_inputs(const Program& program, const ShellGpu& gpu, const ShellSettings& s) const;
+
+private:
+    Program program_{{"shaders/gl/shell_lighting.comp"}};
+    LightingTextures tables_;  // the lighting module's tables (online/lighting_uniforms.h)
+};
+
+class ShellsPass {
+public:
+    // Draws the shells into the bound framebuffer, shifted by `jitter` pixels (x right, y down). `floor`: the same
+    // shells in the same order with a trivial shader (coif bench render's floor). Returns the resolve's wall
+    // time in ms with s.timed and exact compositing, else 0.
+    double draw(const ShellGpu& gpu, const PreparedShells& shells, const Camera& camera, const ShellSettings& s,
+                glm::vec2 jitter, bool floor, const LightingPass& lighting);
+    // The exact compositing's lists (made on first use), or null before.
+    FragmentLists* lists() const { return lists_.get(); }
+
+private:
+    const Program& shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& layout);
+    Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
+    std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use
+    std::unique_ptr<FragmentLists> lists_;
+};
+
+}  // namespace coif::gl

@@ -1,0 +1,94 @@
+#pragma once
+// The shell renderer's scene preparation (online/shell_renderer.h), GL-free: everything about a hairstyle that
+// the GPU passes read, computed once per style on the CPU and testable without a GL context.
+//
+//   prototypes  each prototype cluster's layer meshes (models/generalized_disk.h layer_mesh) in one vertex and
+//               index array, and per sector its density features → FLANN look-up (db/satf.h match_all, DESIGN.md
+//               decision 2), kept as the kMaxShellNeighbours best record ids and weights, plus Σ of the outer
+//               layers' mean α (004 eq. 12's sum; the view-averaged α of each outer sector);
+//   clusters    each cluster (prototype or instance) as one GPU instance: its placement and the scene orientation
+//               as a model matrix, so instances share their prototype's meshes and sectors; its lighting samples
+//               along the axis (position, tangent, frame normal); the placed outer layers' bounds.
+//
+// The seams: level of detail plugs in at prepare_prototypes (the meshes' tessellation and layers per
+// prototype), motion at place_clusters (a new orientation or placement per frame re-runs only that stage).
+//
+// The structs are std430 mirrors of the GLSL that reads them (shaders/gl/shell.vert, shell_shade.glsl,
+// shell_lighting.comp, shell_shadow.comp); their layout is part of that contract.
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <span>
+#include <vector>
+
+#include "db/satf.h"
+#include "models/hair_style.h"
+#include "online/shells/shell_settings.h"
+
+namespace coif {
+
+struct ShellVertex {  // shell.vert's attributes 0..4
+    glm::vec3 position, tangent, normal;
+    glm::vec2 texcoord;       // (u / 2π, t)
+    glm::vec3 axis_normal;    // the cylinder's frame normal n(t)
+};
+struct ShellSector {  // shell_shade.glsl ShellSector
+    glm::uvec4 id{0};         // nearest records, best first
+    glm::vec4 weight{0};
+    glm::vec4 shadow{0};      // x: Σ ᾱ of the outer sectors at the same (i, k)
+};
+struct ShellInstance {  // shell.vert ShellInstance
+    glm::mat4 model;
+    glm::uvec4 info;          // x: first sector of the prototype, y: cluster index
+};
+struct LightingSample {  // shell_lighting.comp / shell_shadow.comp
+    glm::vec4 position;       // world; w: the cluster's radius there
+    glm::vec4 tangent, normal;
+};
+// One layer mesh inside the shared vertex and index arrays.
+struct MeshRange {
+    std::uint32_t first = 0;  // index offset
+    std::int32_t count = 0;   // indices
+    std::int32_t base_vertex = 0;
+    std::int32_t vertex_count = 0;
+};
+
+struct PreparedShells {
+    DiskLayout layout;
+    // Prototypes (slots in order of first use by a cluster).
+    std::vector<std::size_t> prototypes;           // slot → the style's cluster index of the prototype
+    std::vector<ShellVertex> vertices;
+    std::vector<std::uint32_t> indices;
+    std::vector<std::vector<MeshRange>> meshes;    // [slot][layer]
+    std::vector<ShellSector> sectors;              // [slot · layout.sector_count() + sector]
+    std::size_t triangles = 0;
+    // Clusters, in style order.
+    std::vector<std::size_t> cluster_proto;        // cluster → slot
+    std::vector<ShellInstance> instances;
+    std::vector<std::uint32_t> cluster_ids;        // the per-instance attribute: 0, 1, 2, …
+    std::vector<glm::vec3> cluster_centre;         // world, the axis at t = ½ (the sorted compositing's key)
+    int lighting_rows = 0;                         // lighting samples per cluster along t
+    std::vector<LightingSample> samples;           // cluster-major
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // the placed outer layers (world, oriented)
+
+    std::size_t clusters() const { return cluster_proto.size(); }
+};
+
+// The rotation that turns the style's mean root→tip direction (from its clusters' axes) to −y
+// (models/strands.h hang_axis_rotation): identity for y-up styles.
+glm::mat3 style_orientation(const HairStyle& style);
+
+// Stage 1: meshes, sector look-ups and shadow sums of every prototype. `mean_alpha`: per database record (the
+// record atlas's, online/shells/record_atlas.h). Throws coif::Error if the style has no clusters.
+void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const SatfIndex& satf,
+                        std::span<const float> mean_alpha);
+// Stage 2 (after stage 1): instances, lighting samples and bounds of every cluster under `orientation`.
+// `lighting_rows_per_hsv`: lighting samples per HSV along t (0: the layout's mesh_t, one per mesh row);
+// throws coif::Error::parameter outside 0..kMaxMeshSubdivision.
+void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::mat3& orientation,
+                    int lighting_rows_per_hsv = 0);
+// Both stages.
+PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
+                              const glm::mat3& orientation, int lighting_rows_per_hsv = 0);
+
+}  // namespace coif

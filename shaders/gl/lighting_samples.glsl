@@ -1,0 +1,13 @@
+// The shell renderer's lighting samples along each cluster's axis (online/shells/prepared_shells.h
+// LightingSample, its std430 mirror), cluster-major, as the lighting and shadow passes read them.
+#ifndef COIF_SHADERS_GL_LIGHTING_SAMPLES_GLSL
+#define COIF_SHADERS_GL_LIGHTING_SAMPLES_GLSL
+
+struct LightingSample {
+    vec4 position;  // world; w: outer radius of the cluster at the sample (world units)
+    vec4 tangent;   // root → tip
+    vec4 normal;    // the cylinder's frame normal: the reference axis of azimuths
+};
+layout(std430, binding = 2) readonly buffer Samples { LightingSample samples[]; };
+
+#endif
