@@ -78,7 +78,9 @@ TEST(PreparedShells, SectorLookupsAreBestFirstAndShadowSumsGrowInwards) {
         for (int n = 0; n < gl::kMaxShellNeighbours; ++n) {
             EXPECT_LT(s.id[n], test_db().size());
             EXPECT_GE(s.weight[n], 0.0f);
-            if (n > 0) EXPECT_LE(s.weight[n], s.weight[n - 1]);
+            if (n > 0) {
+                EXPECT_LE(s.weight[n], s.weight[n - 1]);
+            }
         }
         EXPECT_GT(s.weight[0], 0.0f);
     }
