@@ -1,7 +1,7 @@
 #pragma once
 // Headless OpenGL 4.5 core contexts. This module (with online/gl.h) owns every GL call of coif: no other
 // folder includes GL. (A window with its context is online/window/window.h, a library of its own, so that a
-// program drawing hair offscreen need not link GLFW.)
+// program drawing hair offscreen links no window system.)
 //
 // headless() is EGL without any window system. It tries, in order, Mesa's surfaceless platform
 // (EGL_MESA_platform_surfaceless: llvmpipe on machines without a GPU, no X needed), the EGL device platform
