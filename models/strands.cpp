@@ -328,4 +328,10 @@ glm::mat3 hang_axis_rotation(const StrandStats& stats) {
     return glm::mat3(1.0f) + K + K * K;
 }
 
+Strands oriented_y_up(Strands strands) {
+    const glm::mat3 r = hang_axis_rotation(strand_stats(strands));
+    for (auto& p : strands.points) p = r * p;
+    return strands;
+}
+
 }  // namespace coif

@@ -99,5 +99,7 @@ StrandStats strand_stats(const Strands& strands);
 // Rotation that takes the dominant hang axis of the strands (±x, ±y or ±z, from the mean root→tip
 // direction) to −y, coif's "down". Identity for y-up models.
 glm::mat3 hang_axis_rotation(const StrandStats& stats);
+// `strands` turned by hang_axis_rotation of their own stats: coif's y-up orientation.
+Strands oriented_y_up(Strands strands);
 
 }  // namespace coif

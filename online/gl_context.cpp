@@ -2,7 +2,6 @@
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
-#include <GLFW/glfw3.h>
 #include <cstdio>
 #include <vector>
 
@@ -79,36 +78,7 @@ std::unique_ptr<Context> Context::headless() {
     return c;
 }
 
-std::unique_ptr<Context> Context::window(int width, int height, const std::string& title) {
-    if (!glfwInit()) {
-        const char* msg = nullptr;
-        glfwGetError(&msg);
-        throw context_error(std::string("cannot start GLFW (no display? run under xvfb-run): ") + (msg ? msg : "unknown"));
-    }
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-    if (!w) {
-        const char* msg = nullptr;
-        glfwGetError(&msg);
-        glfwTerminate();
-        throw context_error(std::string("cannot open an OpenGL 4.5 core window: ") + (msg ? msg : "unknown"));
-    }
-    std::unique_ptr<Context> c(new Context);
-    c->window_ = w;
-    c->platform_ = "GLFW window";
-    c->make_current();
-    glfwSwapInterval(0);
-    return c;
-}
-
 Context::~Context() {
-    if (window_) {
-        glfwDestroyWindow(window_);
-        glfwTerminate();
-    }
     if (display_) {
         eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (context_) eglDestroyContext(display_, context_);
@@ -117,12 +87,10 @@ Context::~Context() {
 }
 
 void Context::make_current() {
-    if (window_) {
-        glfwMakeContextCurrent(window_);
-    } else if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
-        throw context_error("eglMakeCurrent failed");
-    }
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) throw context_error("eglMakeCurrent failed");
 }
+
+void Context::finish() const { glFinish(); }
 
 std::string Context::renderer() const {
     const auto* s = glGetString(GL_RENDERER);

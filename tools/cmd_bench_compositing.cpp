@@ -8,10 +8,11 @@
 #include "models/core/error.h"
 #include "offline/image_metrics.h"
 #include "online/fragment_lists.h"
+#include "models/core/statistics.h"
 #include "online/gl_context.h"
+#include "online/hair_scene.h"
 #include "online/shell_renderer.h"
 #include "tools/cli.h"
-#include "tools/render_scene.h"
 #include "tools/scene_options.h"
 
 namespace {
@@ -40,8 +41,8 @@ void add_bench_compositing(CLI::App& root) {
         "image with it: sorted (clusters back to front), unsorted and exact (the lists sorted on the GPU), at 1 sample,\n"
         "then sorted at --msaa samples (MSAA also changes edge coverage, which the 1-sample reference does not have).\n"
         "PSNR on linear RGB, peak = 99th percentile of the reference's largest channel on the hair pixels (those with\n"
-        "a fragment); wall time of the shells pass with its compositing and of the exact mode's resolve alone (between\n"
-        "glFinish calls, as `coif bench render`: llvmpipe's timer queries misattribute; the modes take turns, median of\n"
+        "a fragment); wall time of the shells pass with its compositing and of the exact mode's resolve alone (each\n"
+        "waited for on the GPU, as `coif bench render`: llvmpipe's timer queries misattribute; the modes take turns, median of\n"
         "--frames after a warm-up round).");
     o->scene.add_to(cmd);
     cmd->add_option("--db", o->db, "HRIR database; default: the cached default database (built on first use)");
@@ -55,7 +56,8 @@ void add_bench_compositing(CLI::App& root) {
     cmd->callback([o] {
         coif::gl::ShellSettings base;
         if (!o->params.empty()) base = coif::gl::read_shell_settings(o->params, base);
-        coif::cli::ShellScene scene(o->scene, coif::cli::read_scene_inputs(o->scene, o->env), o->db, o->lighting_rows);
+        coif::gl::HairScene scene(
+            coif::cli::hair_scene_desc(o->scene, coif::cli::read_scene_inputs(o->scene, o->env), o->db, o->lighting_rows));
         coif::gl::ShellRenderer& renderer = *scene.renderer;
         const coif::Camera& cam = scene.camera;
 
@@ -83,9 +85,9 @@ void add_bench_compositing(CLI::App& root) {
             coif::gl::ShellSettings s = base;
             s.compositing = row.mode;
             s.samples = row.samples;
-            s.timed = true;  // wall-clock per pass between glFinish calls
+            s.timed = true;  // wall-clock per pass, each waited for
             settings.push_back(s);
-            targets.push_back(std::make_unique<coif::gl::RenderTarget>(cam.width, cam.height, GL_RGBA16F, s.samples));
+            targets.push_back(std::make_unique<coif::gl::RenderTarget>(coif::gl::camera_target(cam, s.samples)));
         }
         // Timing: the modes take turns frame by frame, each round starting one mode later (the machine's load
         // changes slowly, and a frame's time depends a little on the frame before; turns spread both over every
@@ -109,8 +111,8 @@ void add_bench_compositing(CLI::App& root) {
             out["peak"] = e.peak;
             out["modes"].push_back({{"mode", rows[i].name}, {"samples", rows[i].samples}, {"psnr_hair_db", e.psnr_hair_db},
                                     {"psnr_all_db", e.psnr_all_db}, {"rms_hair", e.rms_hair}, {"max_abs", e.max_abs},
-                                    {"shells_ms", coif::cli::median(shells_ms[i])},
-                                    {"resolve_ms", coif::cli::median(resolve_ms[i])}});
+                                    {"shells_ms", coif::median(shells_ms[i])},
+                                    {"resolve_ms", coif::median(resolve_ms[i])}});
         }
         if (o->msaa > 1) {  // MSAA's own effect: sorted at --msaa samples against sorted at 1
             const coif::gl::CompositingError e = coif::gl::compositing_error(images[0], images.back(), capture);

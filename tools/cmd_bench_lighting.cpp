@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "models/core/error.h"
-#include "online/gl.h"
+#include "online/benchmarks.h"
 #include "online/gl_context.h"
 #include "shaders/lighting_check.h"
 #include "tools/cli.h"
@@ -96,68 +96,13 @@ void add_bench_lighting(CLI::App& root) {
 
         if (!o->cpu_only) {
             auto context = coif::gl::Context::headless();
-            const auto c0 = std::chrono::steady_clock::now();
-            coif::gl::Program program({"shaders/lighting/bench_lighting.comp"});
-            const double compile_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
-            const LightingTables& tables = global_lighting_tables();
-            const struct {
-                const char* name;
-                const LutImage* image;
-            } luts[] = {{"lut_ck_lo", &tables.ck_lo},         {"lut_ck_hi", &tables.ck_hi},
-                        {"lut_h_tt", &tables.h_tt},           {"lut_h_trt", &tables.h_trt},
-                        {"lut_half_mass", &tables.half_mass}, {"lut_fresnel_fit", &tables.fresnel_fit},
-                        {"lut_ms_ab", &eval.ms_tables().ab},  {"lut_ms_sat_delta", &eval.ms_tables().sat_delta},
-                        {"lut_ms_sat_sigma", &eval.ms_tables().sat_sigma}};
-            std::vector<coif::gl::Texture> textures;
-            program.use();
-            int unit = 0;
-            for (const auto& l : luts) {
-                textures.push_back(coif::gl::make_lut_texture(*l.image));
-                glBindTextureUnit(GLuint(unit), textures.back().id());
-                glUniform1i(program.uniform(l.name), unit);
-                ++unit;
-            }
-            coif::gl::Buffer pbuf = coif::gl::make_buffer(points.data(), points.size() * sizeof(glm::vec4));
-            coif::gl::Buffer lbuf = coif::gl::make_buffer(lights.data(), lights.size() * sizeof(glm::vec4));
-            coif::gl::Buffer rbuf = coif::gl::make_buffer(nullptr, points.size() * 2 * sizeof(glm::vec4), GL_DYNAMIC_STORAGE_BIT);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pbuf.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, lbuf.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rbuf.id());
-            glUniform1i(program.uniform("u_num_points"), o->points);
-            glUniform1i(program.uniform("u_num_lights"), o->lights);
-            glUniform1i(program.uniform("u_multiple"), o->multiple ? 1 : 0);
-            const HairParams& p = params;
-            glUniform4f(program.uniform("u_hair0"), p.eta, p.sigma_a.r, p.sigma_a.g, p.sigma_a.b);
-            glUniform4f(program.uniform("u_hair1"), p.alpha_R, p.alpha_TT, p.alpha_TRT, p.beta_R);
-            glUniform4f(program.uniform("u_hair2"), p.beta_TT, p.beta_TRT, p.ecc_a, p.w_c);
-            const int flags = (config.paper_schlick ? 1 : 0) | (config.paper_norm ? 2 : 0) |
-                              (config.paper_theta_gauss ? 4 : 0) | (config.paper_tt ? 8 : 0);
-            glUniform4f(program.uniform("u_hair3"), p.delta_eta_p, p.d_b, float(config.segments), float(flags));
-            const GLuint groups = GLuint((o->points + 63) / 64);
-            glDispatchCompute(groups, 1, 1);  // warm-up
-            glFinish();
-            const auto g0 = std::chrono::steady_clock::now();
-            for (int r = 0; r < o->repeats; ++r) glDispatchCompute(groups, 1, 1);
-            glFinish();
-            const double gpu_seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count() / o->repeats;
-            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-            std::vector<glm::vec4> gpu(points.size() * 2);
-            glGetNamedBufferSubData(rbuf.id(), 0, GLsizeiptr(gpu.size() * sizeof(glm::vec4)), gpu.data());
-            coif::gl::check_errors("bench lighting");
-            double max_diff = 0.0, scale = 0.0;
-            for (size_t i = 0; i < points.size(); ++i)
-                for (int c = 0; c < 3; ++c) scale = std::max(scale, double(cpu_single[i][c] + cpu_multiple[i][c]));
-            for (size_t i = 0; i < points.size(); ++i)
-                for (int c = 0; c < 3; ++c) {
-                    max_diff = std::max(max_diff, std::abs(double(gpu[2 * i][c]) - cpu_single[i][c]) / scale);
-                    max_diff = std::max(max_diff, std::abs(double(gpu[2 * i + 1][c]) - cpu_multiple[i][c]) / scale);
-                }
+            const coif::gl::GpuLightingRun gpu =
+                coif::gl::run_gpu_lighting(points, lights, params, config, o->multiple, o->repeats);
             result["renderer"] = context->renderer();
-            result["gl_compile_seconds"] = compile_seconds;
-            result["gpu_seconds"] = gpu_seconds;
-            result["gpu_light_points_per_s"] = pairs / gpu_seconds;
-            result["gpu_vs_cpu_max_difference"] = max_diff;
+            result["gl_compile_seconds"] = gpu.compile_seconds;
+            result["gpu_seconds"] = gpu.dispatch_seconds;
+            result["gpu_light_points_per_s"] = pairs / gpu.dispatch_seconds;
+            result["gpu_vs_cpu_max_difference"] = coif::gl::max_relative_difference(gpu, cpu_single, cpu_multiple);
         }
         if (o->json) {
             coif::cli::print_json(result);

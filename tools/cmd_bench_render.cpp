@@ -9,10 +9,11 @@
 
 #include "models/core/error.h"
 #include "models/style_fit.h"
+#include "online/benchmarks.h"
 #include "online/gl_context.h"
+#include "online/hair_scene.h"
 #include "online/shell_renderer.h"
 #include "tools/cli.h"
-#include "tools/render_scene.h"
 #include "tools/scene_options.h"
 
 namespace {
@@ -24,34 +25,11 @@ struct BenchRenderOptions {
     bool json = false, models = true;
 };
 
-struct FrameStats {
-    double wall_ms = 0, lighting_ms = 0, shells_ms = 0, resolve_ms = 0;
-};
-
 struct BenchScene {
     std::string name;
     coif::HairStyle style;
     double fit_seconds = 0;  // style import (models only)
 };
-
-// Median over `frames` frames after one warm-up frame (shader compilation, first-use uploads).
-FrameStats measure(coif::gl::ShellRenderer& r, const coif::Camera& cam, const coif::gl::ShellSettings& s, bool floor,
-                   int frames) {
-    std::vector<FrameStats> all;
-    for (int f = 0; f <= frames; ++f) {
-        const auto t0 = std::chrono::steady_clock::now();
-        r.draw(cam, s, floor);
-        glFinish();
-        const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        if (f > 0) all.push_back({wall, r.timings().lighting_wall_ms, r.timings().shells_wall_ms, r.timings().resolve_wall_ms});
-    }
-    const auto med = [&](auto field) {
-        std::vector<double> v;
-        for (const FrameStats& x : all) v.push_back(x.*field);
-        return coif::cli::median(std::move(v));
-    };
-    return {med(&FrameStats::wall_ms), med(&FrameStats::lighting_ms), med(&FrameStats::shells_ms), med(&FrameStats::resolve_ms)};
-}
 
 void add_bench_render(CLI::App& root) {
     CLI::App* bench = coif::cli::noun(root, "bench", "Benchmarks that print figures (JSON with --json, else a table)");
@@ -60,7 +38,7 @@ void add_bench_render(CLI::App& root) {
         "render",
         "Frame time of `coif render`'s SATF shell renderer (SRBF Marschner lighting, 40 lights by default)\n"
         "Renders the scene --frames times after one warm-up frame into an offscreen target and reports the median wall\n"
-        "time per frame and per pass (each pass between glFinish calls: GPU timer queries misattribute on llvmpipe), then the same\n"
+        "time per frame and per pass (each pass waited for on the GPU: GPU timer queries misattribute on llvmpipe), then the same\n"
         "shells in the same order with a trivial constant-colour shader (the floor) and the ratio of the two, for the\n"
         "--style scene and for every model in --data (fitted with --clusters clusters, as `coif style import` does).");
     o->scene.add_to(cmd);
@@ -84,7 +62,7 @@ void add_bench_render(CLI::App& root) {
         coif::gl::ShellSettings settings;
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
-        settings.timed = true;  // wall-clock per pass between glFinish calls (llvmpipe's timer queries misattribute)
+        settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
         coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
         std::vector<BenchScene> models;
         if (o->models) {
@@ -108,17 +86,19 @@ void add_bench_render(CLI::App& root) {
             }
         }
         // The --style scene; each model is framed around its own sampled strands by the same orbit options.
-        coif::cli::ShellScene scene(o->scene, std::move(inputs), o->db, o->lighting_rows);
+        coif::gl::HairScene scene(coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->db, o->lighting_rows));
         nlohmann::ordered_json rows = nlohmann::ordered_json::array();
         const auto bench_scene = [&](const std::string& name, double fit_seconds, coif::gl::ShellRenderer& renderer,
                                      const coif::Camera& cam) {
-            coif::gl::RenderTarget target(cam.width, cam.height, GL_RGBA16F, settings.samples);
+            const coif::gl::RenderTarget target = coif::gl::camera_target(cam, settings.samples);
             target.bind();
             renderer.draw(cam, settings);  // the shadow pass runs on the first frame only (lights unchanged after)
-            glFinish();
+            scene.context->finish();
             const double shadows_ms = renderer.timings().shadows_ms;
-            const FrameStats full = measure(renderer, cam, settings, false, o->frames);
-            const FrameStats floor = measure(renderer, cam, settings, true, o->frames);
+            const coif::gl::ShellFrameTimes full =
+                coif::gl::time_shell_frames(renderer, *scene.context, cam, settings, false, o->frames);
+            const coif::gl::ShellFrameTimes floor =
+                coif::gl::time_shell_frames(renderer, *scene.context, cam, settings, true, o->frames);
             const auto& st = renderer.stats();
             rows.push_back({{"scene", name}, {"fit_s", fit_seconds}, {"clusters", st.clusters}, {"sectors", st.sectors},
                             {"triangles", st.triangles}, {"lighting_samples", st.lighting_samples},
@@ -130,13 +110,8 @@ void add_bench_render(CLI::App& root) {
         };
         bench_scene(o->scene.style, 0.0, *scene.renderer, scene.camera);
         for (const BenchScene& sc : models) {
-            coif::Strands sampled;
-            coif::gl::ShellRenderer renderer(sc.style, scene.satf, coif::style_orientation(sc.style), o->lighting_rows,
-                                             &sampled);
-            renderer.set_lights(scene.lights);
-            const coif::Camera cam = o->scene.camera_for(o->scene.oriented(std::move(sampled)));
-            coif::cli::refuse_eye_inside(cam, renderer);
-            bench_scene(sc.name, sc.fit_seconds, renderer, cam);
+            const coif::gl::ShellView view = scene.view_of(sc.style, o->scene.shell_framing(false), o->lighting_rows);
+            bench_scene(sc.name, sc.fit_seconds, *view.renderer, view.camera);
         }
         nlohmann::ordered_json j = {
             {"renderer", scene.context->renderer()}, {"width", o->scene.width}, {"height", o->scene.height},
@@ -151,7 +126,7 @@ void add_bench_render(CLI::App& root) {
                     scene.context->renderer().c_str(), o->scene.width, o->scene.height, settings.samples,
                     scene.lights.size(), scene.lights_label.c_str(), settings.multiple ? "single + multiple scattering" : "single scattering",
                     settings.shadows ? "on" : "off", o->frames);
-        std::printf("Wall-clock per pass between glFinish calls. Per hairstyle, once: SATF parameters and look-up\n"
+        std::printf("Wall-clock per pass, each waited for on the GPU. Per hairstyle, once: SATF parameters and look-up\n"
                     "(prepare); per light change: the shadow pass; per frame: the lighting pass, and the shells (re/α\n"
                     "look-up, lighting combine, blending or appending to the per-pixel lists), of which the exact\n"
                     "compositing's per-pixel sort and blend is the resolve; the floor is the same shells rasterised and\n"

@@ -1,6 +1,7 @@
 // coif hair inspect|convert — real strand files (.hair, .data).
 #include <cstdio>
 #include <iostream>
+#include <utility>
 
 #include "models/core/error.h"
 #include "models/strands.h"
@@ -102,10 +103,7 @@ void add_hair(CLI::App& root) {
         if (fs::path(co->out).extension() != ".hair")
             throw coif::Error(co->out, "", "the output must be a .hair file");
         coif::Strands strands = coif::read_strands(co->in);
-        if (co->y_up) {
-            const glm::mat3 r = coif::hang_axis_rotation(coif::strand_stats(strands));
-            for (auto& p : strands.points) p = r * p;
-        }
+        if (co->y_up) strands = coif::oriented_y_up(std::move(strands));
         coif::write_hair(co->out, strands);
         std::fprintf(stderr, "wrote %s: %zu strands, %zu points\n", co->out.c_str(), strands.strand_count(),
                      strands.points.size());

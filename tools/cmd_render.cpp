@@ -14,10 +14,10 @@
 #include "models/core/image.h"
 #include "offline/srbf_lights.h"
 #include "online/gl_context.h"
+#include "online/hair_scene.h"
 #include "online/shell_renderer.h"
 #include "online/strand_renderer.h"
 #include "tools/cli.h"
-#include "tools/render_scene.h"
 #include "tools/scene_options.h"
 
 
@@ -148,11 +148,12 @@ void add_render(CLI::App& root) {
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
         if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
-        settings.timed = true;  // wall-clock per pass between glFinish calls (llvmpipe's timer queries misattribute)
+        settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
         coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
         std::optional<coif::AbsorptionMap> absorption;
         if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.style.clusters.size());
-        coif::cli::ShellScene scene(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr);
+        coif::gl::HairScene scene(
+            coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr));
         coif::gl::ShellRenderer& renderer = *scene.renderer;
         const coif::Camera& camera = scene.camera;
         const auto t_render = std::chrono::steady_clock::now();

@@ -1,7 +1,14 @@
 #include "tools/scene_options.h"
 
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
 #include "models/core/error.h"
 #include "models/style_strands.h"
+#include "offline/envmap.h"
+#include "offline/srbf_fit.h"
+#include "online/hair_scene.h"
 #include "tools/assets.h"
 
 namespace coif::cli {
@@ -42,11 +49,8 @@ Strands SceneOptions::load_strands(std::string* label) const {
 }
 
 Strands SceneOptions::oriented(Strands s) const {
-    if (!keep_axes) {
-        const glm::mat3 r = hang_axis_rotation(strand_stats(s));
-        for (auto& p : s.points) p = r * p;
-    }
-    return s;
+    if (keep_axes) return s;
+    return oriented_y_up(std::move(s));
 }
 
 std::pair<glm::vec3, glm::vec3> SceneOptions::frame_box(const Strands& drawn) const {
@@ -54,9 +58,65 @@ std::pair<glm::vec3, glm::vec3> SceneOptions::frame_box(const Strands& drawn) co
     return {glm::vec3(st.bbox_min), glm::vec3(st.bbox_max)};
 }
 
-Camera SceneOptions::camera_around(const std::pair<glm::vec3, glm::vec3>& box) const {
-    return Camera::orbit(box.first, box.second, static_cast<float>(radians(azimuth_deg)), static_cast<float>(radians(elevation_deg)),
-                         width, height, static_cast<float>(radians(fov_deg)));
+OrbitView SceneOptions::orbit_view() const {
+    OrbitView v;
+    v.azimuth = static_cast<float>(radians(azimuth_deg));
+    v.elevation = static_cast<float>(radians(elevation_deg));
+    v.width = width;
+    v.height = height;
+    v.fov_y = static_cast<float>(radians(fov_deg));
+    return v;
+}
+
+gl::SceneFraming SceneOptions::shell_framing(bool strands_option) const {
+    gl::SceneFraming f;
+    f.view = orbit_view();
+    f.keep_axes = keep_axes;
+    if (!frame_strands.empty()) f.box = frame_box(Strands{});
+    else if (strands_option && !strands.empty()) f.box = frame_box(load_strands());
+    return f;
+}
+
+std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* label) {
+    if (env.empty()) {
+        const std::vector<std::byte> bytes = asset_bytes("default_lights.json");
+        *label = "embedded default lights (40 SRBF, courtyard)";
+        return srbf_lights_from_json(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                                     "<embedded default_lights.json>")
+            .lights;
+    }
+    const std::filesystem::path p(env);
+    if (p.extension() == ".json") {
+        *label = env;
+        return read_srbf_lights(p).lights;
+    }
+    const EnvMap map = load_envmap(p);
+    SrbfFitSettings fs;
+    std::fprintf(stderr, "coif: fitting %d SRBF lights to %s (save them with `coif env fit` to skip this)\n", fs.lights,
+                 env.c_str());
+    *label = env + " (fitted " + std::to_string(fs.lights) + " SRBF lights)";
+    return fit_srbf_lights(map, fs).lights;
+}
+
+SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env) {
+    SceneInputs in;
+    in.lights = load_render_lights(env, &in.lights_label);
+    in.style = load_style(scene.style);
+    return in;
+}
+
+gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs, const std::string& db_path,
+                                  int lighting_rows, const AbsorptionMap* absorption) {
+    gl::HairSceneDesc d;
+    d.style = std::move(inputs.style);
+    d.lights = std::move(inputs.lights);
+    d.lights_label = std::move(inputs.lights_label);
+    d.database = db_path;
+    d.log = &std::cerr;
+    d.lighting_rows = lighting_rows;
+    d.absorption = absorption;
+    d.framing = scene.shell_framing();
+    return d;
 }
 
 }  // namespace coif::cli

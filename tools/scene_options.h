@@ -1,13 +1,22 @@
 #pragma once
-// Options shared by the commands that draw a scene (render, view): which strands, and the camera.
+// Options shared by the commands that draw a scene (render, view, reference, bench): which strands, the camera,
+// and for the shell commands the lights and the scene (online/hair_scene.h) built from them.
 #include <glm/glm.hpp>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "models/absorption_map.h"
 #include "models/core/camera.h"
 #include "models/hair_style.h"
 #include "models/strands.h"
+#include "offline/srbf_lights.h"
 #include "tools/cli.h"
+
+namespace coif::gl {
+struct SceneFraming;   // online/hair_scene.h (only the shell commands need it, and GL with it)
+struct HairSceneDesc;
+}  // namespace coif::gl
 
 namespace coif::cli {
 
@@ -34,9 +43,31 @@ struct SceneOptions {
     // The box the camera frames: the --frame-strands file's strands' (oriented as load_strands orients a
     // --strands file) when given, else `drawn`'s.
     std::pair<glm::vec3, glm::vec3> frame_box(const Strands& drawn) const;
-    // The orbit camera of these options around a box.
-    Camera camera_around(const std::pair<glm::vec3, glm::vec3>& box) const;
+    // The orbit of these options (degrees turned to radians) and the camera it places around a box.
+    OrbitView orbit_view() const;
+    Camera camera_around(const std::pair<glm::vec3, glm::vec3>& box) const { return orbit_view().around(box.first, box.second); }
     Camera camera_for(const Strands& drawn) const { return camera_around(frame_box(drawn)); }
+    // How the shell commands frame a style's shells: around the --frame-strands file's strands, else (when
+    // `strands_option`) the --strands file's, else the style's own strands as the renderer sampled them.
+    gl::SceneFraming shell_framing(bool strands_option = true) const;
 };
+
+// --env: "" = the embedded default lights, *.json = a lights file, else a map fitted with 40 lights.
+std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* label);
+
+// What the shell commands read first, before the database (which may take minutes to build) and GL: the
+// --env lights and the --style, so that a wrong option is refused at once.
+struct SceneInputs {
+    std::string lights_label;
+    std::vector<SrbfLight> lights;
+    HairStyle style;
+};
+SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env);
+
+// The scene the shell commands draw: the inputs' style and lights, the --db database (empty: the cached default
+// one, its messages on stderr), painted with `absorption` if given (it must outlive the scene), framed by
+// shell_framing().
+gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs, const std::string& db_path,
+                                  int lighting_rows, const AbsorptionMap* absorption = nullptr);
 
 }  // namespace coif::cli

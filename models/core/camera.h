@@ -30,4 +30,15 @@ struct Camera {
                         int width, int height, float fov_y = 0.6981317f);
 };
 
+// Everything Camera::orbit takes but the box: how a scene's camera is placed around whatever it frames.
+struct OrbitView {
+    float azimuth = 0.0f, elevation = 0.0f;  // radians, as Camera::orbit
+    int width = 720, height = 480;
+    float fov_y = 0.6981317f;  // 40°
+
+    Camera around(const glm::vec3& box_min, const glm::vec3& box_max) const {
+        return Camera::orbit(box_min, box_max, azimuth, elevation, width, height, fov_y);
+    }
+};
+
 }  // namespace coif

@@ -1,0 +1,87 @@
+#pragma once
+// The scene that `coif render`, `coif bench render` and `coif bench compositing` draw, as one library call: a
+// hairstyle's SATF shells in the shell renderer (online/shell_renderer.h) with the HRIR database (given, or the
+// cached default one: db/default_database.h), its SATF index and a headless GL context, lit by SRBF lights,
+// painted with an absorption map if given, and a camera orbiting the hair. Its inputs are plain data
+// (HairSceneDesc); the command line's options are parsed into them by tools/.
+#include <filesystem>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "db/hrir_db.h"
+#include "db/satf.h"
+#include "models/absorption_map.h"
+#include "models/core/camera.h"
+#include "models/hair_style.h"
+#include "models/strands.h"
+#include "offline/srbf_lights.h"
+#include "online/gl_context.h"
+#include "online/shell_renderer.h"
+
+namespace coif::gl {
+
+// How a scene's camera frames its hair: an orbit (models/core/camera.h) around a box.
+struct SceneFraming {
+    OrbitView view;
+    // Frame this box (world space) instead of the hair itself, e.g. another geometry of the same hair, so that
+    // images of both line up.
+    std::optional<std::pair<glm::vec3, glm::vec3>> box;
+    bool keep_axes = false;  // frame the sampled strands in the style's axes (else turned y-up, as drawn)
+
+    // The camera around `box` when set, else around the style's strands as the renderer sampled them
+    // (ShellRenderer's `sampled_strands`), turned y-up unless keep_axes: what `coif reference` frames for the same
+    // options, so that the two images line up pixel for pixel.
+    Camera camera_for(Strands sampled) const;
+};
+
+struct HairSceneDesc {
+    HairStyle style;
+    std::vector<SrbfLight> lights;
+    std::string lights_label;          // where the lights come from, in words (messages, image metadata)
+    std::filesystem::path database;    // empty: the default database, built on first use
+    std::ostream* log = nullptr;       // the default database's messages (which file, building it); null: none
+    int lighting_rows = 0;             // ShellRenderer's lighting_rows_per_hsv (0: one per mesh row)
+    const AbsorptionMap* absorption = nullptr;  // painted σa, or null; must outlive the scene
+    SceneFraming framing;
+};
+
+// Throws coif::Error::parameter if the camera's eye lies inside the renderer's shells' box (nothing sensible
+// can be drawn from there).
+void refuse_eye_inside(const Camera& camera, const ShellRenderer& renderer);
+
+// An offscreen target of the camera's size in the renderers' linear format (RGBA16F), with `samples` samples
+// (MSAA when more than 1): what ShellRenderer::draw draws into for benchmarks.
+RenderTarget camera_target(const Camera& camera, int samples);
+
+// A style's shells in a renderer and the camera framing them.
+struct ShellView {
+    std::unique_ptr<ShellRenderer> renderer;
+    Camera camera;
+};
+
+struct HairScene {
+    // Opens (or builds) the database and its SATF index, makes a headless GL context, prepares the style's shells
+    // and frames them; throws coif::Error (also when the camera's eye is inside the hair).
+    explicit HairScene(HairSceneDesc desc);
+    HairScene(const HairScene&) = delete;
+    HairScene& operator=(const HairScene&) = delete;
+
+    // Another style's shells in a renderer sharing this scene's database, SATF index and lights, framed by
+    // `framing` (without absorption); throws as the constructor. The renderer must not outlive the scene.
+    ShellView view_of(const HairStyle& style, const SceneFraming& framing, int lighting_rows) const;
+
+    std::string lights_label;
+    std::vector<SrbfLight> lights;
+    HairStyle style;
+    HrirDatabase db;
+    SatfIndex satf;
+    std::unique_ptr<Context> context;
+    std::unique_ptr<ShellRenderer> renderer;
+    Camera camera;
+};
+
+}  // namespace coif::gl
