@@ -59,7 +59,7 @@ TEST(HairScene, DrawsWhatTheRendererAssembledByHandDraws) {
     const Image a = scene.renderer->render(scene.camera, settings);
 
     Strands sampled;
-    gl::ShellRenderer by_hand(scene.style, scene.satf, gl::style_orientation(scene.style), 0, &sampled);
+    gl::ShellRenderer by_hand(scene.style, scene.satf, style_orientation(scene.style), 0, &sampled);
     by_hand.set_lights(scene.lights);
     const Camera camera = desc().framing.camera_for(std::move(sampled));
     EXPECT_EQ(camera.eye, scene.camera.eye);
