@@ -328,4 +328,9 @@ glm::mat3 hang_axis_rotation(const StrandStats& stats) {
     return glm::mat3(1.0f) + K + K * K;
 }
 
+float auto_fiber_radius(const Strands& strands) {
+    const StrandStats st = strand_stats(strands);
+    return kAutoRadiusFraction * static_cast<float>(glm::length(st.bbox_max - st.bbox_min));
+}
+
 }  // namespace coif
