@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <thread>
 #include <utility>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "offline/envmap.h"
 #include "offline/srbf_fit.h"
 #include "tools/assets.h"
@@ -47,7 +47,7 @@ HrirDatabase open_render_database(const std::string& db_path) {
     std::filesystem::create_directories(path.parent_path());
     BuildOptions b;
     b.params.sectors = kDefaultRenderSectors;
-    b.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    b.threads = thread_count(0);  // every hardware thread
     std::fprintf(stderr,
                  "coif: no --db given: building the default database (%llu sectors, %d threads) into %s; later runs reuse it\n",
                  static_cast<unsigned long long>(b.params.sectors), b.threads, path.string().c_str());
