@@ -27,6 +27,7 @@
 #include "db/hrir_db.h"
 #include "db/satf.h"
 #include "models/hair_style.h"
+#include "models/sector_features.h"
 
 namespace coif {
 

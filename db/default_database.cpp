@@ -5,7 +5,8 @@
 #include <cstdlib>
 #include <ostream>
 #include <string>
-#include <thread>
+
+#include "models/core/parallel.h"
 
 namespace coif {
 
@@ -32,7 +33,7 @@ HrirDatabase open_database_or_default(const std::filesystem::path& path, std::os
     std::filesystem::create_directories(cached.parent_path());
     BuildOptions b;
     b.params.sectors = kDefaultDatabaseSectors;
-    b.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    b.threads = thread_count(0);  // every hardware thread
     if (log)
         *log << "coif: no --db given: building the default database (" << b.params.sectors << " sectors, " << b.threads
              << " threads) into " << cached.string() << "; later runs reuse it\n"

@@ -1,46 +1,18 @@
 #include "db/eval.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <mutex>
-#include <numbers>
-#include <thread>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
+#include "models/core/units.h"
+#include "models/sector_features.h"
 
 namespace coif {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-template <class Fn>
-void parallel_for(std::size_t n, int threads, Fn&& fn) {
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex m;
-    const auto work = [&] {
-        for (;;) {
-            const std::size_t i = next++;
-            if (i >= n) return;
-            try {
-                fn(i);
-            } catch (...) {
-                std::lock_guard lock(m);
-                if (!error) error = std::current_exception();
-                next = n;
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
-}
 
 // Pooled relative L2 accumulator.
 struct L2 {
@@ -69,7 +41,7 @@ Truth trace_truth(const DbParams& p, std::uint64_t i, int pairs, bool with_recor
     t.features = raw_sector_features(s.feature_grid, s.params.depth, s.params.width / s.params.depth);
     const PlanarTracer tracer(s.trace_grid, p.tracer);
     const auto X = static_cast<std::size_t>(p.grids.hrir_length);
-    SectorRng rng(sector_seed(held_out_seed(p.seed) ^ 0xA9, i));
+    Xoshiro256 rng(sector_seed(held_out_seed(p.seed) ^ 0xA9, i));
     t.re.resize(X * pairs);
     t.alpha.resize(X * pairs);
     for (int j = 0; j < pairs; ++j) {
@@ -193,7 +165,7 @@ std::vector<StudyRow> resolution_study(const DbParams& p, std::size_t held_out, 
     parallel_for(held_out, threads, [&](std::size_t i) {
         const SectorSample s = generate_sector(p.generator, held_out_seed(p.seed), i);
         const PlanarTracer tracer(s.trace_grid, p.tracer);
-        SectorRng rng(sector_seed(held_out_seed(p.seed) ^ 0x57, i));
+        Xoshiro256 rng(sector_seed(held_out_seed(p.seed) ^ 0x57, i));
         const int X = p.grids.hrir_length;
         const auto Xs = static_cast<std::size_t>(X);
         PerSector& out = per[i];

@@ -32,7 +32,7 @@ struct EvalOptions {
     std::vector<FeatureSet> sets{kAllFeatureSets.begin(), kAllFeatureSets.end()};
     std::vector<int> ks{1, 2, 4, 8, 16};
     std::vector<Blend> blends{Blend::InverseDistance, Blend::Gaussian};
-    int threads = 1;
+    int threads = 0;  // worker threads, 0 = every hardware thread (models/core/parallel.h); was 1 before v0.2
 };
 
 struct ErrorStats {

@@ -2,23 +2,22 @@
 
 #include <algorithm>
 #include <chrono>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <fcntl.h>
 #include <glm/gtc/packing.hpp>
 #include <map>
-#include <mutex>
 #include <sys/mman.h>
 #include <sys/stat.h>
-#include <thread>
 #include <unistd.h>
 
 #include "models/core/atomic_file.h"
 #include "models/core/checksum.h"
 #include "models/core/bytes.h"
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
+#include "models/sector_features.h"
 
 namespace coif {
 
@@ -380,7 +379,7 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
     const DbParams& p = o.params;
     if (p.sectors == 0) throw Error::parameter("--sectors", "must be at least 1");
     if (p.sectors > (1ull << 32)) throw Error::parameter("--sectors", "at most 2^32");
-    if (o.threads < 1) throw Error::parameter("--threads", "must be at least 1");
+    if (o.threads < 0) throw Error::parameter("--threads", "must be 0 (every hardware thread) or more");
     if (o.chunk < 1) throw Error::parameter("chunk", "must be at least 1");
     // The reader's checks, before anything is traced or written: a file it would refuse is never built.
     try {
@@ -412,39 +411,22 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
 
     Progress bar("db build", report.count);
     bar.advance(report.reused);
-    std::atomic<std::size_t> next{0};
-    std::mutex error_mutex;
-    std::exception_ptr error;
-    const auto work = [&] {
-        for (;;) {
-            const std::size_t i = next++;
-            if (i >= chunks.size()) return;
-            if (done[i]) continue;
-            try {
-                Chunk& c = chunks[i];
-                for (std::uint64_t k = 0; k < c.count; ++k) {
-                    const SectorRecord r = build_sector(p, c.first + k);
-                    c.features.insert(c.features.end(), r.features.begin(), r.features.end());
-                    encode_values(p.value_type, r.values, c.records);
-                    bar.advance();
-                }
-                write_chunk(chunk_path(parts, c.first), hash, p, c);
-            } catch (...) {
-                std::lock_guard lock(error_mutex);
-                if (!error) error = std::current_exception();
-                next = chunks.size();
-                return;
-            }
-        }
-    };
+    // Each chunk holds its own sectors' records, joined in index order below: the file does not depend on
+    // the thread count. The first error stops the build (finished chunks stay for --resume).
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<std::thread> pool;
-    for (int t = 1; t < o.threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
+    parallel_for(chunks.size(), o.threads, [&](std::size_t i) {
+        if (done[i]) return;
+        Chunk& c = chunks[i];
+        for (std::uint64_t k = 0; k < c.count; ++k) {
+            const SectorRecord r = build_sector(p, c.first + k);
+            c.features.insert(c.features.end(), r.features.begin(), r.features.end());
+            encode_values(p.value_type, r.values, c.records);
+            bar.advance();
+        }
+        write_chunk(chunk_path(parts, c.first), hash, p, c);
+    });
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     bar.finish();
-    if (error) std::rethrow_exception(error);
 
     std::vector<float> features;
     std::vector<std::byte> records;

@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "models/sector_features.h"
 #include "offline/planar_tracer.h"
 #include "offline/sector_generator.h"
 
@@ -132,7 +133,7 @@ Shard parse_shard(const std::string& text);  // "k/n" with 0 ≤ k < n; throws c
 struct BuildOptions {
     DbParams params;
     Shard shard;
-    int threads = 1;
+    int threads = 0;         // worker threads, 0 = every hardware thread (models/core/parallel.h); was 1 before v0.2
     bool resume = false;
     std::size_t chunk = 64;  // sectors per resumable chunk (progress: coif::Progress, quiet if set so)
     bool keep_parts = false; // keep FILE.parts/ after success (tests of --resume)

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 
 #include "db/satf.h"
 #include "models/core/error.h"
+#include "models/core/units.h"
 
 namespace coif {
 
@@ -59,8 +59,8 @@ Image plot_record(const HrirDatabase& db, std::size_t record) {
             dot(img, x, top + 4, {0.25f, 0.25f, 0.25f});
             dot(img, x, top + kPlotPanelHeight - 4, {0.25f, 0.25f, 0.25f});
         }
-        const double tv = views[p] * std::numbers::pi / 180.0;
-        const std::array<double, 3> lights{tv, tv + std::numbers::pi / 2, 0.0};
+        const double tv = radians(views[p]);
+        const std::array<double, 3> lights{tv, tv + kPi / 2, 0.0};
         const std::array<std::array<float, 3>, 3> colours{{{1.0f, 0.2f, 0.2f}, {0.2f, 1.0f, 0.2f}, {0.3f, 0.5f, 1.0f}}};
         for (std::size_t l = 0; l < lights.size(); ++l) {
             evaluate_record(g, rec, tv, lights[l], re, alpha);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <numbers>
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpedantic"
@@ -17,6 +16,8 @@
 #include "models/core/checksum.h"
 #include "models/core/bytes.h"
 #include "models/core/error.h"
+#include "models/core/units.h"
+#include "models/sector_features.h"
 
 namespace coif {
 
@@ -31,7 +32,6 @@ constexpr char kIndexMagic[8] = {'C', 'O', 'I', 'F', 'F', 'L', 'N', 'N'};
 constexpr std::uint32_t kIndexVersion = 1;
 constexpr std::size_t kIndexHeader = 48;
 constexpr int kLeafMaxSize = 10;  // FLANN's default leaf size for the single k-d tree
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 
 std::uint32_t set_id(FeatureSet s) { return static_cast<std::uint32_t>(s); }

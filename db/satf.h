@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "db/hrir_db.h"
+#include "models/sector_features.h"
 
 namespace coif {
 

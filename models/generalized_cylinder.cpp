@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "models/core/units.h"
 
 namespace coif {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // 5-point Gauss–Legendre on [0, 1].
 constexpr double kGaussX[5] = {0.04691007703066800, 0.23076534494715845, 0.5, 0.76923465505284155, 0.95308992296933200};

@@ -1,13 +1,13 @@
 #include "models/generalized_disk.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "models/core/units.h"
 
 namespace coif {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // 4-point Gauss–Legendre on [0, 1]: exact for polynomials of degree 7, so the volume of a straight
 // elliptic cylinder (integrand linear in v) is exact to rounding.
 constexpr double kGX[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};

@@ -5,11 +5,11 @@
 #include <cstdlib>
 #include <cstdio>
 #include <map>
-#include <numbers>
 #include <stdexcept>
 
 #include "models/core/atomic_file.h"
 #include "models/core/error.h"
+#include "models/core/units.h"
 
 namespace coif {
 namespace fs = std::filesystem;
@@ -17,8 +17,6 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr const char* kNonFinite = "__coif_non_finite_number__";  // stands in for NaN/Infinity literals
 
 // Replaces the non-standard literals NaN, Infinity, inf (optionally signed) and numbers that
@@ -176,7 +174,7 @@ std::shared_ptr<DensitySource> read_density(const Reader& rd, const json& d, con
             for (std::size_t q = 0; q < planes; ++q) {
                 const double v = rd.number(run[1 + 2 * q], rp + "/" + std::to_string(1 + 2 * q));
                 if (v < 0) rd.fail(rp + "/" + std::to_string(1 + 2 * q), "relative radius v is negative");
-                const double u = rd.number(run[2 + 2 * q], rp + "/" + std::to_string(2 + 2 * q)) * kDegree;
+                const double u = rd.number(run[2 + 2 * q], rp + "/" + std::to_string(2 + 2 * q)) * kRadiansPerDegree;
                 sr.vu.emplace_back(v, u);
             }
             out->strands.push_back(std::move(sr));
@@ -339,7 +337,7 @@ HairStyle style_from_json(const json& doc, const fs::path& file) {
         for (std::size_t k = 0; k < tj.size(); ++k) control.push_back(rd.vec3(tj[k], p + "/trajectory/" + std::to_string(k)));
         Spline1 a = rd.spline1(rd.field(c, p, "a"), p + "/a", true);
         Spline1 b = rd.spline1(rd.field(c, p, "b"), p + "/b", true);
-        Spline1 theta = rd.spline1(rd.field(c, p, "theta_deg"), p + "/theta_deg", false, kDegree);
+        Spline1 theta = rd.spline1(rd.field(c, p, "theta_deg"), p + "/theta_deg", false, kRadiansPerDegree);
         try {
             cl.shape = std::make_shared<GeneralizedCylinder>(Spline3(std::move(control)), std::move(a), std::move(b), std::move(theta));
         } catch (const std::invalid_argument& e) {
@@ -406,7 +404,7 @@ nlohmann::ordered_json style_to_json(const HairStyle& style) {
         };
         j["a"] = list(c.shape->a_spline(), 1.0);
         j["b"] = list(c.shape->b_spline(), 1.0);
-        j["theta_deg"] = list(c.shape->theta_spline(), 1.0 / kDegree);
+        j["theta_deg"] = list(c.shape->theta_spline(), 1.0 / kRadiansPerDegree);
         const DensitySource& d = *c.density;
         json dj = json::object();
         switch (d.kind) {
@@ -420,7 +418,7 @@ nlohmann::ordered_json style_to_json(const HairStyle& style) {
                     for (const glm::dvec2& vu : r.vu) {
                         // v to 1e-3 of the radius, u to 0.1°: far below a density grid cell.
                         run.push_back(std::round(vu.x * 1000.0) / 1000.0);
-                        run.push_back(std::round(vu.y / kDegree * 10.0) / 10.0);
+                        run.push_back(std::round(vu.y / kRadiansPerDegree * 10.0) / 10.0);
                     }
                     runs.push_back(std::move(run));
                 }

@@ -334,4 +334,9 @@ Strands oriented_y_up(Strands strands) {
     return strands;
 }
 
+float auto_fiber_radius(const Strands& strands) {
+    const StrandStats st = strand_stats(strands);
+    return kAutoRadiusFraction * static_cast<float>(glm::length(st.bbox_max - st.bbox_min));
+}
+
 }  // namespace coif

@@ -102,4 +102,12 @@ glm::mat3 hang_axis_rotation(const StrandStats& stats);
 // `strands` turned by hang_axis_rotation of their own stats: coif's y-up orientation.
 Strands oriented_y_up(Strands strands);
 
+// Default fibre radius as a fraction of the strands' bounding-box diagonal: 1e-3 gives 0.04 cm for a
+// 40 cm head, about 0.8 px wide at coif render's default framing (720×480, 40° fov) — close to the 1-px
+// GL lines of the strand preview. Real hair is ~0.004 cm in radius, but the models here are 100–8 000
+// guide strands, not the ~100 000 of a head, so physical fibres would leave the hair see-through.
+// Used alike by the reference path tracer (offline/reference.h) and the strand renderer (online/).
+inline constexpr float kAutoRadiusFraction = 1e-3f;
+float auto_fiber_radius(const Strands& strands);
+
 }  // namespace coif

@@ -1,24 +1,25 @@
 #include "models/style_fit.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <random>
-#include <thread>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
+#include "models/core/random.h"
+#include "models/core/units.h"
 
 namespace coif {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kRepresentativeSamples = 48;  // points of a cluster's mean curve
 constexpr double kMaxCrossingV = 4.0;       // crossings farther out than this (relative) are not the cluster's
 // A member's crossing of the plane at t is searched within ±kArcWindow·(longest member) of arc length
@@ -52,7 +53,7 @@ Polyline make_polyline(const Strands& st, std::size_t i, const glm::dmat3& R) {
 // ── k-means on shape features ──
 std::vector<int> kmeans(const std::vector<std::vector<double>>& f, int k, int iterations, std::uint32_t seed, Progress* bar) {
     const std::size_t n = f.size(), d = f[0].size();
-    std::mt19937_64 rng(seed);
+    Rng rng = seeded_rng(seed);
     const auto dist2 = [&](const std::vector<double>& a, const std::vector<double>& b) {
         double acc = 0;
         for (std::size_t q = 0; q < d; ++q) acc += (a[q] - b[q]) * (a[q] - b[q]);
@@ -80,32 +81,26 @@ std::vector<int> kmeans(const std::vector<std::vector<double>>& f, int k, int it
         centres.push_back(f[chosen]);
     }
     std::vector<int> label(n, -1);
-    const unsigned threads = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
     for (int it = 0; it < iterations; ++it) {
-        std::vector<int> changed(threads, 0);
-        std::vector<std::thread> pool;
-        for (unsigned w = 0; w < threads; ++w)
-            pool.emplace_back([&, w] {
-                for (std::size_t i = w; i < n; i += threads) {
-                    int best = 0;
-                    double bd = std::numeric_limits<double>::max();
-                    for (int c = 0; c < k; ++c) {
-                        const double dd = dist2(f[i], centres[static_cast<std::size_t>(c)]);
-                        if (dd < bd) {
-                            bd = dd;
-                            best = c;
-                        }
-                    }
-                    if (label[i] != best) {
-                        label[i] = best;
-                        changed[w] = 1;
-                    }
+        // Assignment: each point's nearest centre, independent of the others (and of the thread count).
+        std::atomic<bool> changed{false};
+        parallel_for(n, 0, [&](std::size_t i) {
+            int best = 0;
+            double bd = std::numeric_limits<double>::max();
+            for (int c = 0; c < k; ++c) {
+                const double dd = dist2(f[i], centres[static_cast<std::size_t>(c)]);
+                if (dd < bd) {
+                    bd = dd;
+                    best = c;
                 }
-            });
-        for (auto& t : pool) t.join();
+            }
+            if (label[i] != best) {
+                label[i] = best;
+                changed.store(true, std::memory_order_relaxed);
+            }
+        });
         if (bar) bar->advance();
-        bool any = false;
-        for (int c : changed) any = any || c;
+        bool any = changed.load();
         // Update, re-seeding empty clusters at the point farthest from its centre.
         std::vector<std::vector<double>> sum(static_cast<std::size_t>(k), std::vector<double>(d, 0.0));
         std::vector<std::size_t> count(static_cast<std::size_t>(k), 0);
@@ -282,7 +277,7 @@ FittedCluster fit_cluster(const std::vector<Polyline>& lines, std::vector<std::s
         if (have_prev) {
             double best = theta, bestA = A, bestB = B, bd = std::numeric_limits<double>::max();
             for (int m = -8; m <= 8; ++m) {
-                const double cand = theta + m * std::numbers::pi / 2;
+                const double cand = theta + m * kPi / 2;
                 if (std::abs(cand - prev_theta) < bd) {
                     bd = std::abs(cand - prev_theta);
                     best = cand;
@@ -503,17 +498,10 @@ HairStyle fit_style(const Strands& strands, const FitOptions& options, FitReport
         std::optional<Progress> bar;
         if (o.progress) bar.emplace("fitting clusters", static_cast<std::uint64_t>(k));
         std::vector<std::optional<FittedCluster>> slots(members.size());
-        std::atomic<std::size_t> next{0};
-        std::vector<std::thread> pool;
-        const unsigned threads = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
-        for (unsigned w = 0; w < threads; ++w)
-            pool.emplace_back([&] {
-                for (std::size_t c; (c = next++) < members.size();) {
-                    if (!members[c].empty()) slots[c] = fit_cluster(lines, members[c], o, r_min);
-                    if (bar) bar->advance();
-                }
-            });
-        for (auto& t : pool) t.join();
+        parallel_for(members.size(), 0, [&](std::size_t c) {
+            if (!members[c].empty()) slots[c] = fit_cluster(lines, members[c], o, r_min);
+            if (bar) bar->advance();
+        });
         if (bar) bar->finish();
         for (auto& s : slots)
             if (s) fitted.push_back(std::move(*s));
@@ -582,43 +570,37 @@ FitError fitting_error(const HairStyle& style, const Strands& strands, const std
     e.strands = n;
     std::optional<Progress> bar;
     if (progress) bar.emplace("measuring fitting error (strands)", n);
-    const unsigned threads = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
+    // One partial per strand, summed in strand order: the figure does not depend on the thread count.
     struct Partial {
         std::size_t points = 0, inside = 0, outside = 0, assigned = 0;
         double sum2 = 0, max = 0;
     };
-    std::vector<Partial> part(threads);
-    std::vector<std::thread> pool;
-    for (unsigned w = 0; w < threads; ++w)
-        pool.emplace_back([&, w] {
-            Partial& p = part[w];
-            for (std::size_t i = w; i < n; i += threads) {
-                const int c = i < strand_cluster.size() ? strand_cluster[i] : -1;
-                const bool crosses = i < strand_crosses.size() && strand_crosses[i];
-                const std::size_t np = strands.point_count(i);
-                p.points += np;
-                if (c < 0 || static_cast<std::size_t>(c) >= style.clusters.size()) {
-                    // Unassigned: every point counts as outside at an unknown distance; not in the RMS.
-                    continue;
-                }
-                p.assigned += crosses ? 1 : 0;
-                const Cluster& cl = style.clusters[static_cast<std::size_t>(c)];
-                const Similarity& s = cl.placement;
-                const glm::dquat inv = glm::conjugate(s.rotation);
-                for (std::uint32_t k = strands.offsets[i]; k < strands.offsets[i + 1]; ++k) {
-                    const glm::dvec3 x = inv * ((glm::dvec3(strands.points[k]) - s.translation) / s.scale);
-                    const double d = cl.shape->distance_outside(x) * s.scale;
-                    if (d == 0) ++p.inside;
-                    else {
-                        ++p.outside;
-                        p.sum2 += d * d;
-                        p.max = std::max(p.max, d);
-                    }
-                }
-                if (bar) bar->advance();
+    std::vector<Partial> part(n);
+    parallel_for(n, 0, [&](std::size_t i) {
+        Partial& p = part[i];
+        const int c = i < strand_cluster.size() ? strand_cluster[i] : -1;
+        const bool crosses = i < strand_crosses.size() && strand_crosses[i];
+        p.points = strands.point_count(i);
+        if (c < 0 || static_cast<std::size_t>(c) >= style.clusters.size()) {
+            // Unassigned: every point counts as outside at an unknown distance; not in the RMS.
+            return;
+        }
+        p.assigned = crosses ? 1 : 0;
+        const Cluster& cl = style.clusters[static_cast<std::size_t>(c)];
+        const Similarity& s = cl.placement;
+        const glm::dquat inv = glm::conjugate(s.rotation);
+        for (std::uint32_t k = strands.offsets[i]; k < strands.offsets[i + 1]; ++k) {
+            const glm::dvec3 x = inv * ((glm::dvec3(strands.points[k]) - s.translation) / s.scale);
+            const double d = cl.shape->distance_outside(x) * s.scale;
+            if (d == 0) ++p.inside;
+            else {
+                ++p.outside;
+                p.sum2 += d * d;
+                p.max = std::max(p.max, d);
             }
-        });
-    for (auto& t : pool) t.join();
+        }
+        if (bar) bar->advance();
+    });
     if (bar) bar->finish();
     double sum2 = 0;
     std::size_t outside = 0;

@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <random>
 
 #include "models/core/error.h"
+#include "models/core/random.h"
+#include "models/core/units.h"
 
 namespace coif {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * kPi;
 
 // Piecewise-constant inverse CDF over bins of equal width on [0, 1): returns a position in [0, 1).
 double inverse_cdf(const std::vector<double>& w, double xi) {
@@ -126,7 +124,7 @@ Strands sample_strands(const HairStyle& style, const StrandSampling& o) {
         double nmax = 0;
         for (const auto& p : planes) nmax = std::max(nmax, p.count);
         const int n = static_cast<int>(std::round(nmax));
-        std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + ci);
+        Rng rng = seeded_rng(o.seed, ci);
         std::uniform_real_distribution<double> U(0, 1);
         for (int j = 0; j < n; ++j) {
             const double xi_v = U(rng), xi_u = U(rng);

@@ -7,6 +7,7 @@
 #include "models/core/atomic_file.h"
 #include "models/core/checksum.h"
 #include "models/core/error.h"
+#include "models/core/units.h"
 #include "shaders/envmap.h"
 
 namespace coif {
@@ -155,7 +156,7 @@ EnvMap downsample_envmap(const EnvMap& map, int width) {
     // Columns: uniform in φ. Rows: measure dω ∝ d(−cos θ) with θ = π v.
     const auto cols = box_weights(map.width, width, [](double a, double b) { return b - a; });
     const auto rows = box_weights(map.height, height, [](double a, double b) {
-        return 2.0 * std::sin(M_PI * (a + b) / 2.0) * std::sin(M_PI * (b - a) / 2.0);
+        return 2.0 * std::sin(kPi * (a + b) / 2.0) * std::sin(kPi * (b - a) / 2.0);
     });
     EnvMap out(width, height);
     std::vector<glm::dvec3> row_acc(static_cast<size_t>(width));
@@ -189,7 +190,7 @@ glm::dvec3 envmap_energy(const EnvMap& map) {
     return energy;
 }
 
-double envmap_mean_luminance(const EnvMap& map) { return luminance(envmap_energy(map)) / (4.0 * M_PI); }
+double envmap_mean_luminance(const EnvMap& map) { return luminance(envmap_energy(map)) / (4.0 * kPi); }
 
 float envmap_preview_exposure(const EnvMap& map) {
     const double floor = 1e-4 * std::max(envmap_mean_luminance(map), 1e-30);

@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "models/core/error.h"
 #include "models/core/json_field.h"
+#include "models/core/units.h"
 
 namespace coif {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kSmoothingCutoff = 3.0;  // the smoothing kernel is cut at 3 widths: exp(−9) ≈ 1e-4
 constexpr double kNegligibleAlpha = 1e-9;
 
@@ -93,7 +92,7 @@ AngleGrids angle_grids_from_json(const nlohmann::json& j) {
 }
 
 double phong_specular_average(double p) {
-    return std::exp(std::lgamma((p + 1) / 2) - std::lgamma(p / 2 + 1)) / (2 * std::sqrt(std::numbers::pi));
+    return std::exp(std::lgamma((p + 1) / 2) - std::lgamma(p / 2 + 1)) / (2 * std::sqrt(kPi));
 }
 
 PlanarTracer::PlanarTracer(const SectorDensity& density, const TracerParams& params) : d_(density), p_(params) {
@@ -205,7 +204,7 @@ void PlanarTracer::trace_view_impl(double theta_v, std::span<const double> theta
     const glm::dvec2 v{std::sin(theta_v), std::cos(theta_v)};
     std::vector<glm::dvec2> l(n_l);
     for (std::size_t j = 0; j < n_l; ++j) l[j] = {std::sin(theta_l[j]), std::cos(theta_l[j])};
-    const double average = p_.kd / std::numbers::pi + p_.ks * specular_average_;
+    const double average = p_.kd / kPi + p_.ks * specular_average_;
 
     std::vector<float> ray_alpha(static_cast<std::size_t>(n_rays)), ray_re(n_l * n_rays);
     std::vector<double> acc_re(n_l);

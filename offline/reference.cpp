@@ -7,53 +7,18 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <mutex>
-#include <thread>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
+#include "models/core/random.h"
+#include "models/core/units.h"
 #include "shaders/envmap.h"
 
 namespace coif {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-// ───────────────────────── random numbers: one stream per pixel ─────────────────────────
-
-std::uint64_t splitmix64(std::uint64_t& x) {
-    std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// PCG32 (O'Neill 2014), seeded through splitmix64 so that neighbouring pixel indices give unrelated streams.
-class Rng {
-public:
-    Rng(std::uint64_t seed, std::uint64_t stream) {
-        std::uint64_t s = seed ^ (stream * 0xD1B54A32D192ED03ull);
-        state_ = splitmix64(s);
-        inc_ = splitmix64(s) | 1u;
-    }
-    std::uint32_t next() {
-        const std::uint64_t old = state_;
-        state_ = old * 6364136223846793005ull + inc_;
-        const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
-        const auto rot = static_cast<std::uint32_t>(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((32 - rot) & 31));
-    }
-    // Uniform in [0, 1).
-    float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
-    float normal() {
-        const float u1 = std::max(uniform(), 1e-12f), u2 = uniform();
-        return std::sqrt(-2.0f * std::log(u1)) * std::cos(2.0f * kPi * u2);
-    }
-
-private:
-    std::uint64_t state_ = 0, inc_ = 1;
-};
 
 float max3(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 
@@ -64,7 +29,7 @@ int sample_cdf(const float* cdf, int n, float x) {
 }
 
 glm::vec3 uniform_sphere(float xi0, float xi1) {
-    const float z = 1.0f - 2.0f * xi0, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * xi1;
+    const float z = 1.0f - 2.0f * xi0, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPiF * xi1;
     return {r * std::cos(phi), z, r * std::sin(phi)};
 }
 
@@ -79,7 +44,7 @@ void basis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
 float vmf_kappa(float lambda) { return 2.0f / (lambda * lambda); }
 // Density on the sphere of exp(κ(cos γ − 1)) normalised: κ / (2π (1 − e^{−2κ})) · exp(κ(cos γ − 1)).
 float vmf_pdf(float kappa, float cos_gamma) {
-    return kappa / (2.0f * kPi * static_cast<float>(-std::expm1(-2.0 * kappa))) * std::exp(kappa * (cos_gamma - 1.0f));
+    return kappa / (2.0f * kPiF * static_cast<float>(-std::expm1(-2.0 * kappa))) * std::exp(kappa * (cos_gamma - 1.0f));
 }
 
 void check_finite(const glm::vec3& v, const std::string& place) {
@@ -182,7 +147,7 @@ glm::vec3 ReferenceEnvironment::radiance(const glm::vec3& d) const {
 
 float ReferenceEnvironment::pdf(const glm::vec3& d) const {
     switch (kind_) {
-        case Kind::constant: return 1.0f / (4.0f * kPi);
+        case Kind::constant: return 1.0f / (4.0f * kPiF);
         case Kind::map: {
             const glm::vec2 uv = glsl::envmap_uv(d);
             const int c = std::clamp(static_cast<int>(uv.x * map_.width), 0, map_.width - 1);
@@ -204,7 +169,7 @@ glm::vec3 ReferenceEnvironment::sample(float xi0, float xi1, float xi2, float xi
     switch (kind_) {
         case Kind::constant:
             d = uniform_sphere(xi0, xi1);
-            p = 1.0f / (4.0f * kPi);
+            p = 1.0f / (4.0f * kPiF);
             return constant_;
         case Kind::map: {
             const int w = map_.width, h = map_.height;
@@ -212,8 +177,8 @@ glm::vec3 ReferenceEnvironment::sample(float xi0, float xi1, float xi2, float xi
             const int c = sample_cdf(&col_cdf_[static_cast<size_t>(r) * (w + 1)], w, xi1);
             // Uniform in solid angle inside the pixel: u uniform, cos θ uniform (θ = π v, shaders/envmap.glsl).
             const float u = (c + xi2) / w;
-            const float cos0 = std::cos(kPi * r / h), cos1 = std::cos(kPi * (r + 1) / h);
-            const float v = std::acos(std::clamp(cos0 + (cos1 - cos0) * xi3, -1.0f, 1.0f)) / kPi;
+            const float cos0 = std::cos(kPiF * r / h), cos1 = std::cos(kPiF * (r + 1) / h);
+            const float v = std::acos(std::clamp(cos0 + (cos1 - cos0) * xi3, -1.0f, 1.0f)) / kPiF;
             d = glsl::envmap_direction(glm::vec2(u, v));
             p = pixel_prob_[static_cast<size_t>(r) * w + c] / glsl::envmap_pixel_solid_angle(float(r), float(w), float(h));
             return glm::max(map_.at(c, r), glm::vec3(0.0f));
@@ -224,7 +189,7 @@ glm::vec3 ReferenceEnvironment::sample(float xi0, float xi1, float xi2, float xi
             const float kappa = vmf_kappa(l.lambda);
             // Inverse CDF of cos γ for exp(κ(cos γ − 1)): cos γ = 1 + log(ξ + (1 − ξ) e^{−2κ}) / κ.
             const float cos_g = std::clamp(1.0f + std::log(xi1 + (1.0f - xi1) * std::exp(-2.0f * kappa)) / kappa, -1.0f, 1.0f);
-            const float sin_g = std::sqrt(std::max(0.0f, 1.0f - cos_g * cos_g)), phi = 2.0f * kPi * xi2;
+            const float sin_g = std::sqrt(std::max(0.0f, 1.0f - cos_g * cos_g)), phi = 2.0f * kPiF * xi2;
             glm::vec3 b1, b2;
             basis(l.omega, b1, b2);
             d = glm::normalize(cos_g * l.omega + sin_g * (std::cos(phi) * b1 + std::sin(phi) * b2));
@@ -237,11 +202,6 @@ glm::vec3 ReferenceEnvironment::sample(float xi0, float xi1, float xi2, float xi
 }
 
 // ───────────────────────── Embree scene ─────────────────────────
-
-float auto_fiber_radius(const Strands& strands) {
-    const StrandStats st = strand_stats(strands);
-    return kAutoRadiusFraction * static_cast<float>(glm::length(st.bbox_max - st.bbox_min));
-}
 
 void validate(const ReferenceSettings& s) {
     if (s.samples_per_pixel < 1 || s.samples_per_pixel > kMaxReferenceSpp)
@@ -435,15 +395,15 @@ struct Tracer {
     }
     // Wrapped normal density of φ around mu (three wraps are plenty for σ ≤ 1), or uniform for σ ≥ π.
     static float phi_pdf(float phi, float mu, float sigma) {
-        if (sigma >= kPi) return 1.0f / (2.0f * kPi);
+        if (sigma >= kPiF) return 1.0f / (2.0f * kPiF);
         float d = phi - mu;
-        d -= 2.0f * kPi * std::floor((d + kPi) / (2.0f * kPi));
-        return normal_pdf(d, 0.0f, sigma) + normal_pdf(d - 2.0f * kPi, 0.0f, sigma) + normal_pdf(d + 2.0f * kPi, 0.0f, sigma);
+        d -= 2.0f * kPiF * std::floor((d + kPiF) / (2.0f * kPiF));
+        return normal_pdf(d, 0.0f, sigma) + normal_pdf(d - 2.0f * kPiF, 0.0f, sigma) + normal_pdf(d + 2.0f * kPiF, 0.0f, sigma);
     }
 
     // Solid-angle density of the scattering-direction sampler.
     float direction_pdf(const FiberFrame& f, const glm::vec3& wo, const glm::vec3& wi) const {
-        float p = (n_hints ? kUniformShare : 1.0f) / (4.0f * kPi);
+        float p = (n_hints ? kUniformShare : 1.0f) / (4.0f * kPiF);
         if (!n_hints) return p;
         float theta_o, phi_o, theta_i, phi_i;
         glsl::hair_angles(wo, f.u, f.v, f.w, theta_o, phi_o);
@@ -462,7 +422,7 @@ struct Tracer {
 
     // Draws a scattering direction; false when the draw falls outside the sphere's θ range (the path ends:
     // an unbiased zero contribution).
-    bool sample_direction(const FiberFrame& f, const glm::vec3& wo, Rng& rng, glm::vec3& wi) const {
+    bool sample_direction(const FiberFrame& f, const glm::vec3& wo, Pcg32& rng, glm::vec3& wi) const {
         const float xi = rng.uniform();
         if (!n_hints || xi < kUniformShare) {
             wi = uniform_sphere(rng.uniform(), rng.uniform());
@@ -474,8 +434,8 @@ struct Tracer {
         float theta_o, phi_o;
         glsl::hair_angles(wo, f.u, f.v, f.w, theta_o, phi_o);
         const float theta_i = 2.0f * hints[l].alpha - theta_o + 1.41421356f * hints[l].beta * rng.normal();
-        if (std::abs(theta_i) >= 0.5f * kPi) return false;
-        const float phi_i = hints[l].phi_sigma >= kPi ? kPi * (2.0f * rng.uniform() - 1.0f)
+        if (std::abs(theta_i) >= 0.5f * kPiF) return false;
+        const float phi_i = hints[l].phi_sigma >= kPiF ? kPiF * (2.0f * rng.uniform() - 1.0f)
                                                       : phi_o + hints[l].phi_offset + hints[l].phi_sigma * rng.normal();
         const float ct = std::cos(theta_i);
         wi = glm::normalize(std::sin(theta_i) * f.u + ct * (std::cos(phi_i) * f.v + std::sin(phi_i) * f.w));
@@ -485,7 +445,7 @@ struct Tracer {
     static float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 
     // Radiance leaving the fibre at `hit` towards −d (d = the direction of the ray that found it).
-    glm::vec3 radiance(Hit hit, glm::vec3 d, Rng& rng) const {
+    glm::vec3 radiance(Hit hit, glm::vec3 d, Pcg32& rng) const {
         glm::vec3 L(0.0f), throughput(1.0f);
         for (int depth = 1;; ++depth) {
             const FiberFrame f = frame(hit.segment);
@@ -549,7 +509,7 @@ glm::vec4 ReferenceRenderer::trace(const glm::vec3& origin, const glm::vec3& dir
     glm::dvec3 sum(0.0);
     int hits = 0;
     for (int i = 0; i < paths; ++i) {
-        Rng rng(seed, static_cast<std::uint64_t>(i));
+        Pcg32 rng(seed, static_cast<std::uint64_t>(i));
         const Hit h = tracer.intersect(origin, d, RTC_INVALID_GEOMETRY_ID);
         if (!h.found) continue;
         ++hits;
@@ -566,58 +526,44 @@ Image ReferenceRenderer::render(const Camera& camera, ReferenceStats* stats) con
     Image image(w, h, settings_.alpha ? 4 : 3);
     std::unique_ptr<Progress> bar;
     if (settings_.progress) bar = std::make_unique<Progress>("reference " + std::to_string(spp) + " spp", static_cast<std::uint64_t>(h));
-    std::atomic<int> next_row{0};
     std::atomic<std::uint64_t> total_rays{0};
     std::atomic<std::uint64_t> total_hits{0};
     const auto t0 = std::chrono::steady_clock::now();
-    std::mutex error_mutex;
-    std::exception_ptr error;
-    const auto work = [&] {
-        try {
-            const Tracer tracer = make_tracer(impl_->scene, segment_strand_, segment_tangent_, env_, bsdf_, settings_);
-            std::uint64_t hits_here = 0;
-            for (int y; (y = next_row.fetch_add(1)) < h;) {
-                for (int x = 0; x < w; ++x) {
-                    Rng rng(settings_.seed, static_cast<std::uint64_t>(y) * w + x);
-                    glm::dvec3 hair(0.0), background(0.0);
-                    int hits = 0;
-                    for (int s = 0; s < spp; ++s) {
-                        glm::vec3 o, d;
-                        camera.ray(x + rng.uniform(), y + rng.uniform(), o, d);
-                        const Hit hit = tracer.intersect(o, d, RTC_INVALID_GEOMETRY_ID);
-                        if (hit.found) {
-                            ++hits;
-                            hair += glm::dvec3(tracer.radiance(hit, d, rng));
-                        } else {
-                            background += glm::dvec3(settings_.background_env ? env_.radiance(d) : settings_.background);
-                        }
-                    }
-                    hits_here += hits;
-                    float* p = image.at(x, y);
-                    if (settings_.alpha) {
-                        const glm::dvec3 c = hits ? hair / double(hits) : glm::dvec3(0.0);
-                        p[0] = float(c.x), p[1] = float(c.y), p[2] = float(c.z), p[3] = float(hits) / float(spp);
-                    } else {
-                        const glm::dvec3 c = (hair + background) / double(spp);
-                        p[0] = float(c.x), p[1] = float(c.y), p[2] = float(c.z);
-                    }
+    // One row per task; every pixel draws from its own Pcg32 stream (seed, pixel index), so rows may run in
+    // any order and the image is the same on any thread count.
+    parallel_for(static_cast<std::size_t>(h), settings_.threads, [&](std::size_t row) {
+        const int y = static_cast<int>(row);
+        const Tracer tracer = make_tracer(impl_->scene, segment_strand_, segment_tangent_, env_, bsdf_, settings_);
+        std::uint64_t hits_here = 0;
+        for (int x = 0; x < w; ++x) {
+            Pcg32 rng(settings_.seed, static_cast<std::uint64_t>(y) * w + x);
+            glm::dvec3 hair(0.0), background(0.0);
+            int hits = 0;
+            for (int s = 0; s < spp; ++s) {
+                glm::vec3 o, d;
+                camera.ray(x + rng.uniform(), y + rng.uniform(), o, d);
+                const Hit hit = tracer.intersect(o, d, RTC_INVALID_GEOMETRY_ID);
+                if (hit.found) {
+                    ++hits;
+                    hair += glm::dvec3(tracer.radiance(hit, d, rng));
+                } else {
+                    background += glm::dvec3(settings_.background_env ? env_.radiance(d) : settings_.background);
                 }
-                if (bar) bar->advance(1);
             }
-            total_rays += tracer.rays;
-            total_hits += hits_here;
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error) error = std::current_exception();
-            next_row = h;
+            hits_here += hits;
+            float* p = image.at(x, y);
+            if (settings_.alpha) {
+                const glm::dvec3 c = hits ? hair / double(hits) : glm::dvec3(0.0);
+                p[0] = float(c.x), p[1] = float(c.y), p[2] = float(c.z), p[3] = float(hits) / float(spp);
+            } else {
+                const glm::dvec3 c = (hair + background) / double(spp);
+                p[0] = float(c.x), p[1] = float(c.y), p[2] = float(c.z);
+            }
         }
-    };
-    const int n_threads = settings_.threads > 0 ? settings_.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<std::thread> threads;
-    for (int i = 1; i < n_threads; ++i) threads.emplace_back(work);
-    work();
-    for (auto& t : threads) t.join();
-    if (error) std::rethrow_exception(error);
+        if (bar) bar->advance(1);
+        total_rays += tracer.rays;
+        total_hits += hits_here;
+    });
     if (bar) bar->finish();
     for (float v : image.pixels)
         if (!std::isfinite(v)) throw Error::parameter("reference render", "a pixel came out NaN or infinite (a bug: please report it)");

@@ -11,7 +11,7 @@
 // linear segments put the fibres where the real-time renderer puts them; B-splines would need control
 // points recomputed from the polyline (they approximate, not interpolate) and move every fibre. Neighbour
 // flags are set so that joints are closed without internal caps. The fibre radius is a scene-unit option;
-// by default kAutoRadiusFraction of the strands' bounding-box diagonal (see auto_fiber_radius).
+// by default kAutoRadiusFraction of the strands' bounding-box diagonal (models/strands.h, auto_fiber_radius).
 //
 // Shading. A camera ray that hits a fibre sees L_o(ωo) = ∫ L_i(ωi) S(ωi, ωo) cos θi dωi (the far-field
 // fibre of reference_fiber.h). L_i is the environment where the direction is unoccluded, and the light
@@ -52,13 +52,6 @@
 #include "offline/srbf_lights.h"
 
 namespace coif {
-
-// Default fibre radius as a fraction of the strands' bounding-box diagonal: 1e-3 gives 0.04 cm for a
-// 40 cm head, about 0.8 px wide at coif render's default framing (720×480, 40° fov) — close to the 1-px
-// GL lines of the strand preview. Real hair is ~0.004 cm in radius, but the models here are 100–8 000
-// guide strands, not the ~100 000 of a head, so physical fibres would leave the hair see-through.
-inline constexpr float kAutoRadiusFraction = 1e-3f;
-float auto_fiber_radius(const Strands& strands);
 
 // Largest path depth accepted (scattering events).
 inline constexpr int kMaxReferenceDepth = 1000;

@@ -1,21 +1,19 @@
 #include "offline/reference_fiber.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
 #include <vector>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
+#include "models/core/units.h"
 #include "shaders/marschner_reference.h"
 
 namespace coif {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
-
 // x wrapped to [−π, π).
-float wrap_pi(float x) { return x - 2.0f * kPi * std::floor((x + kPi) / (2.0f * kPi)); }
+float wrap_pi(float x) { return x - 2.0f * kPiF * std::floor((x + kPiF) / (2.0f * kPiF)); }
 
 // Longitudinal angle θ and azimuth φ of a unit direction in the hair frame, by the lighting module's
 // own convention (srbf_single.glsl hair_angles).
@@ -26,7 +24,7 @@ void angles(const FiberFrame& f, const glm::vec3& d, float& theta, float& phi) {
 }  // namespace
 
 glm::vec3 IsotropicFiber::S(const FiberFrame&, const glm::vec3&, const glm::vec3&) const {
-    return albedo_ / (kPi * kPi);
+    return albedo_ / (kPiF * kPiF);
 }
 
 // ───────────────────────── the exact azimuthal functions, tabulated ─────────────────────────
@@ -42,7 +40,7 @@ struct MarschnerTable {
     static constexpr int kTheta = 32;   // |θd| steps of 2.9°
     static constexpr int kPhi = 129;    // |φ| steps of 1.4°; the narrowest lobe (TRT at w_c = 0.15 rad) spans ~12 steps
     static constexpr int kEtaEcc = 9;   // η* samples of eccentric TRT over [η*_min, η*_max] (000 eq. 24)
-    static constexpr float kThetaMax = 0.5f * kPi * 0.999f;
+    static constexpr float kThetaMax = 0.5f * kPiF * 0.999f;
     int n_eta = 1;
     float eta_lo = 0, eta_hi = 0;
     // [lobe][η index][θ index][φ index]
@@ -53,7 +51,7 @@ struct MarschnerTable {
     }
     glm::vec3 lookup(int lobe, float eta_star, float theta_d, float phi) const {
         const float ft = std::min(std::abs(theta_d), kThetaMax) / kThetaMax * (kTheta - 1);
-        const float fp = std::min(std::abs(wrap_pi(phi)), kPi) / kPi * (kPhi - 1);
+        const float fp = std::min(std::abs(wrap_pi(phi)), kPiF) / kPiF * (kPhi - 1);
         const int t0 = std::min(static_cast<int>(ft), kTheta - 2), p0 = std::min(static_cast<int>(fp), kPhi - 2);
         const float st = ft - t0, sp = fp - p0;
         int e0 = 0;
@@ -79,7 +77,7 @@ struct MarschnerTable {
 namespace {
 
 float table_theta(int t) { return MarschnerTable::kThetaMax * t / (MarschnerTable::kTheta - 1); }
-float table_phi(int p) { return kPi * p / (MarschnerTable::kPhi - 1); }
+float table_phi(int p) { return kPiF * p / (MarschnerTable::kPhi - 1); }
 
 std::shared_ptr<MarschnerTable> build_table(const shading::HairParams& hp) {
     auto table = std::make_shared<MarschnerTable>();
@@ -96,23 +94,15 @@ std::shared_ptr<MarschnerTable> build_table(const shading::HairParams& hp) {
     for (int lobe = 0; lobe < 3; ++lobe)
         for (int e = 0; e < (lobe == glsl::LOBE_TRT ? table->n_eta : 1); ++e)
             for (int t = 0; t < MarschnerTable::kTheta; ++t) jobs.push_back({lobe, e, t});
-    std::atomic<size_t> next{0};
-    const auto work = [&] {
-        for (size_t j; (j = next.fetch_add(1)) < jobs.size();) {
-            const Job& job = jobs[j];
-            const double eta = job.lobe == glsl::LOBE_TRT && table->n_eta > 1
-                                   ? table->eta_lo + (table->eta_hi - table->eta_lo) * job.e / (table->n_eta - 1)
-                                   : double(hp.eta);
-            for (int p = 0; p < MarschnerTable::kPhi; ++p)
-                table->values[table->index(job.lobe, job.e, job.t, p)] =
-                    glm::vec3(shading::reference::N_exact(job.lobe, hp, eta, table_theta(job.t), table_phi(p)));
-        }
-    };
-    const unsigned n_threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> threads;
-    for (unsigned i = 1; i < n_threads; ++i) threads.emplace_back(work);
-    work();
-    for (auto& t : threads) t.join();
+    parallel_for(jobs.size(), 0, [&](size_t j) {
+        const Job& job = jobs[j];
+        const double eta = job.lobe == glsl::LOBE_TRT && table->n_eta > 1
+                               ? table->eta_lo + (table->eta_hi - table->eta_lo) * job.e / (table->n_eta - 1)
+                               : double(hp.eta);
+        for (int p = 0; p < MarschnerTable::kPhi; ++p)
+            table->values[table->index(job.lobe, job.e, job.t, p)] =
+                glm::vec3(shading::reference::N_exact(job.lobe, hp, eta, table_theta(job.t), table_phi(p)));
+    });
     return table;
 }
 
@@ -151,7 +141,7 @@ int MarschnerFiber::lobe_hints(FiberLobeHint out[3]) const {
     // R and TRT spread over every azimuth (N_R ∝ |cos(φ/2)|, TRT has glints off-centre); TT is forward, at
     // φ = φo − φi ≈ π, so φi ≈ φo − π.
     out[0] = {params_.alpha_R, params_.beta_R, 0.0f, 10.0f, 0.3f};
-    out[1] = {params_.alpha_TT, params_.beta_TT, -kPi, 0.6f, 0.45f};
+    out[1] = {params_.alpha_TT, params_.beta_TT, -kPiF, 0.6f, 0.45f};
     out[2] = {params_.alpha_TRT, params_.beta_TRT, 0.0f, 10.0f, 0.25f};
     return 3;
 }
@@ -159,11 +149,11 @@ int MarschnerFiber::lobe_hints(FiberLobeHint out[3]) const {
 glm::vec3 fiber_albedo(const FiberBsdf& bsdf, const FiberFrame& frame, const glm::vec3& wo, int n) {
     // ∫ S cos θi dωi with dωi = d(sin θi) dφi: midpoint rule on n × 2n cells of (sin θi, φi).
     glm::dvec3 acc(0.0);
-    const double ds = 2.0 / n, dphi = kPi / n;
+    const double ds = 2.0 / n, dphi = kPiF / n;
     for (int i = 0; i < n; ++i) {
         const double s = -1.0 + (i + 0.5) * ds, c = std::sqrt(std::max(0.0, 1.0 - s * s));
         for (int j = 0; j < 2 * n; ++j) {
-            const double phi = -kPi + (j + 0.5) * dphi;
+            const double phi = -kPiF + (j + 0.5) * dphi;
             const glm::vec3 wi = glm::normalize(float(s) * frame.u + float(c * std::cos(phi)) * frame.v + float(c * std::sin(phi)) * frame.w);
             acc += glm::dvec3(bsdf.S(frame, wi, wo)) * c;
         }

@@ -2,66 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "models/core/error.h"
 #include "models/core/json_field.h"
+#include "models/core/units.h"
 
 namespace coif {
-
-std::uint64_t splitmix64(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 std::uint64_t sector_seed(std::uint64_t global_seed, std::uint64_t index) {
     constexpr std::uint64_t kIndexSalt = 0x5EC7042D15C0FFEEull;  // keeps seed 0, index 0 away from 0
     return splitmix64(splitmix64(global_seed) ^ splitmix64(index + kIndexSalt));
-}
-
-SectorRng::SectorRng(std::uint64_t seed) {
-    for (auto& s : s_) {
-        seed = splitmix64(seed);
-        s = seed;
-    }
-}
-
-std::uint64_t SectorRng::next() {
-    const auto rotl = [](std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); };
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
-    const std::uint64_t t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-}
-
-double SectorRng::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-
-double SectorRng::log_uniform(double lo, double hi) { return lo * std::exp(std::log(hi / lo) * uniform()); }
-
-double SectorRng::normal() {
-    const double u1 = 1.0 - uniform();  // (0, 1]
-    const double u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-}
-
-std::uint64_t SectorRng::poisson(double mean) {
-    if (!(mean > 0)) return 0;
-    if (mean > 30) return static_cast<std::uint64_t>(std::max(0.0, std::round(mean + std::sqrt(mean) * normal())));
-    const double limit = std::exp(-mean);
-    std::uint64_t k = 0;
-    double p = uniform();
-    while (p > limit) {
-        ++k;
-        p *= uniform();
-    }
-    return k;
 }
 
 nlohmann::json to_json(const SectorRanges& r) {
@@ -150,7 +100,7 @@ SectorDensity periodic_density(int n_s, int n_r, double width, double depth, con
 }
 
 SectorSample generate_sector(const SectorRanges& g, std::uint64_t global_seed, std::uint64_t index) {
-    SectorRng rng(sector_seed(global_seed, index));
+    Xoshiro256 rng(sector_seed(global_seed, index));
     SectorSample out;
     SectorParams& p = out.params;
     // Every draw happens in a fixed order whatever the branch, so one parameter never shifts the others.
@@ -176,7 +126,7 @@ SectorSample generate_sector(const SectorRanges& g, std::uint64_t global_seed, s
     if (empty) p.coverage = 0;
 
     const double area = p.width * p.depth;
-    const std::uint64_t n = rng.poisson(p.coverage * area / std::numbers::pi);
+    const std::uint64_t n = rng.poisson(p.coverage * area / kPi);
     // Clump centres: about one per (3 σ_clump)² of area, at least one.
     const std::uint64_t n_clumps = 1 + rng.poisson(area / (9.0 * p.clump_width * p.clump_width));
     std::vector<glm::dvec2> centres;
@@ -227,27 +177,6 @@ SectorSample generate_sector(const SectorRanges& g, std::uint64_t global_seed, s
                            ? periodic_density(g.feature_grid_s, g.feature_grid_r, p.width, p.depth, out.strands)
                            : density_from_points(g.feature_grid_s, g.feature_grid_r, p.width, p.depth, out.strands, 1.0);
     return out;
-}
-
-RawFeatures raw_sector_features(const SectorDensity& feature_grid, double depth_over_lambda, double width_over_depth) {
-    RawFeatures f{};
-    const auto paper = paper_features(feature_grid);
-    const auto rich = rich_features(feature_grid);
-    std::copy(paper.begin(), paper.end(), f.begin());
-    std::copy(rich.begin(), rich.end(), f.begin() + kRichColumn0);
-    f[kShapeColumn0] = static_cast<float>(std::log(std::max(depth_over_lambda, 1e-6)));
-    f[kShapeColumn0 + 1] = static_cast<float>(std::log(std::max(width_over_depth, 1e-6)));
-    return f;
-}
-
-std::vector<std::string> raw_feature_names() {
-    std::vector<std::string> names = {"paper_rho_st", "paper_rho_s", "paper_rho_t", "mean_density", "centroid_s",
-                                      "spread_s",     "centroid_r",  "spread_r"};
-    for (int i = 0; i < 4; ++i) names.push_back("bin_s" + std::to_string(i));
-    for (int i = 0; i < 4; ++i) names.push_back("bin_r" + std::to_string(i));
-    names.push_back("ln_depth_over_lambda");
-    names.push_back("ln_width_over_depth");
-    return names;
 }
 
 std::string feature_set_name(FeatureSet set) {

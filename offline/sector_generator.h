@@ -32,29 +32,16 @@
 #include <string>
 #include <vector>
 
+#include "models/core/random.h"
 #include "models/generalized_disk.h"
 #include "models/sector_density.h"
+#include "models/sector_features.h"  // RawFeatures, raw_sector_features: shared with the renderer
 
 namespace coif {
 
-// splitmix64 (Steele, Lea, Flood 2014): the seed of sector i is mix(mix(global) ^ mix(i + salt)).
-std::uint64_t splitmix64(std::uint64_t x);
+// The seed of sector i is splitmix64(splitmix64(global) ^ splitmix64(i + salt)) (models/core/random.h);
+// a sample draws from a Xoshiro256 seeded with it.
 std::uint64_t sector_seed(std::uint64_t global_seed, std::uint64_t index);
-
-// xoshiro256** (Blackman, Vigna 2018) seeded by splitmix64: a small, fully specified generator.
-class SectorRng {
-public:
-    explicit SectorRng(std::uint64_t seed);
-    std::uint64_t next();
-    double uniform();                              // [0, 1), 53 bits
-    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-    double log_uniform(double lo, double hi);      // log-uniform on [lo, hi], lo > 0
-    double normal();                               // Box–Muller, one value per call
-    std::uint64_t poisson(double mean);            // Knuth for mean ≤ 30, rounded normal above
-
-private:
-    std::array<std::uint64_t, 4> s_{};
-};
 
 struct SectorRanges {
     // The ranges were set by `coif db coverage` against the fitted real styles (docs/db.md, "Coverage"):
@@ -124,20 +111,7 @@ SectorSample generate_sector(const SectorRanges& ranges, std::uint64_t global_se
 // The density of strand crossings on an n_s × n_r grid over W × H (λ = 1), periodic in s.
 SectorDensity periodic_density(int n_s, int n_r, double width, double depth, const std::vector<glm::dvec2>& strands);
 
-// ---- Features: the database's index terms (004 §5.2, eq. 4's ρ_feature) -------------------------
-// One raw vector per sector holds every column any feature definition uses; a definition picks
-// columns. The density columns come from models/ (paper_features, rich_features: one source of
-// truth with the renderer); two shape columns are added because the records depend on the
-// sector's size in λ, which the density alone does not tell: ln(H/λ) and ln(W/H).
-inline constexpr int kPaperColumns = 3;
-inline constexpr int kShapeColumns = 2;
-inline constexpr int kRawFeatureCount = kPaperColumns + kRichFeatureCount + kShapeColumns;
-inline constexpr int kRichColumn0 = kPaperColumns;
-inline constexpr int kShapeColumn0 = kPaperColumns + kRichFeatureCount;
-using RawFeatures = std::array<float, kRawFeatureCount>;
-
-RawFeatures raw_sector_features(const SectorDensity& feature_grid, double depth_over_lambda, double width_over_depth);
-std::vector<std::string> raw_feature_names();
+// ---- Feature sets: which columns of the raw feature vector (models/sector_features.h) index the database
 
 enum class FeatureSet { Paper, PaperShape, Rich, RichShape };
 inline constexpr std::array<FeatureSet, 4> kAllFeatureSets{FeatureSet::Paper, FeatureSet::PaperShape, FeatureSet::Rich,

@@ -5,11 +5,12 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
-#include <random>
 
 #include <ceres/ceres.h>
 
 #include "models/core/error.h"
+#include "models/core/random.h"
+#include "models/core/units.h"
 #include "shaders/envmap.h"
 
 namespace coif {
@@ -152,11 +153,8 @@ private:
     int max_iterations_;
 };
 
-// Portable uniform double in [0, 1): std::mt19937_64 is fully specified, the distributions are not.
-double uniform01(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
-
 // Index drawn with probability ∝ weight[i] (weights ≥ 0, sum > 0).
-size_t draw(const std::vector<double>& weight, std::mt19937_64& rng) {
+size_t draw(const std::vector<double>& weight, Rng& rng) {
     const double total = std::accumulate(weight.begin(), weight.end(), 0.0);
     double x = uniform01(rng) * total;
     for (size_t i = 0; i < weight.size(); ++i) {
@@ -179,7 +177,7 @@ struct Cluster {
 std::vector<Cluster> cluster_energy(const FitPixels& px, int k, std::uint64_t seed, int iterations,
                                     double lambda_min, double lambda_max) {
     const size_t n = px.omega.size();
-    std::mt19937_64 rng(seed);
+    Rng rng = seeded_rng(seed);
     std::vector<glm::dvec3> centre;
     std::vector<double> d2(n, 4.0), w(n);
     auto chord2 = [](const glm::dvec3& a, const glm::dvec3& b) { return std::max(0.0, 2.0 * (1.0 - glm::dot(a, b))); };
@@ -260,7 +258,7 @@ SrbfFitResult fit_srbf_lights(const EnvMap& map, const SrbfFitSettings& settings
                                                       std::to_string(max_lights) + " for a " +
                                                       std::to_string(grid.width) + "x" +
                                                       std::to_string(grid.height) + " fit grid");
-    const double lambda_min = settings.lambda_min > 0 ? settings.lambda_min : M_PI / (grid.height * settings.supersampling);
+    const double lambda_min = settings.lambda_min > 0 ? settings.lambda_min : kPi / (grid.height * settings.supersampling);
     const double lambda_max = settings.lambda_max;
     if (!(lambda_min >= kSrbfLambdaMinAllowed && lambda_max <= kSrbfLambdaMaxAllowed && lambda_min < lambda_max))
         throw Error::parameter("bandwidth range", "[" + std::to_string(lambda_min) + ", " + std::to_string(lambda_max) +

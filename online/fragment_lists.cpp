@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "models/core/error.h"
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 
 namespace coif::gl {
 

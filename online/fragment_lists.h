@@ -61,7 +61,7 @@ struct FragmentDepthStats {
 FragmentDepthStats fragment_depth_stats(const FragmentCapture& capture);
 
 // Error of an image against the exact composite, linear RGB. PSNR = 10 log10(peak² / MSE), peak = the
-// 99th percentile of the reference's largest channel over the hair pixels (offline/image_metrics.h's
+// 99th percentile of the reference's largest channel over the hair pixels (models/core/image_metrics.h's
 // linear peak); hair = the pixels with at least one captured fragment; "all" = every pixel.
 struct CompositingError {
     double psnr_hair_db = 0, psnr_all_db = 0;  // +∞ when identical

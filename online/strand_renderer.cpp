@@ -5,7 +5,7 @@
 #include <numeric>
 
 #include "models/core/error.h"
-#include "offline/reference.h"
+#include "models/strands.h"
 
 namespace coif::gl {
 

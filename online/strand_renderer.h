@@ -45,7 +45,7 @@ struct StrandSettings {
     shading::LightingConfig config = shading::default_config(4);
     int lobes = 7;                 // bit 0 R, bit 1 TT, bit 2 TRT
     bool multiple = true;          // the unoccluded fibre's multiple scattering d_b 𝓜^L (off: single scattering only)
-    float fiber_radius = 0.0f;     // world units; 0: the reference's auto radius (offline/reference.h auto_fiber_radius)
+    float fiber_radius = 0.0f;     // world units; 0: the reference's auto radius (models/strands.h auto_fiber_radius)
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair (the reference's default)
     int samples = 4;               // MSAA samples of the offscreen target
     bool sort_segments = true;     // back-to-front order of segments (off: file order)

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "models/core/units.h"
 
 namespace coif::shading {
 
@@ -26,8 +27,7 @@ void check_range(const std::string& place, const char* name, float v, float lo, 
 }  // namespace
 
 HairParams default_hair_params() {
-    constexpr float deg = 0.017453292519943295f;
-    return linked_hair_params(1.55f, glm::vec3(0.432f, 0.612f, 0.98f), -7.5f * deg, 7.5f * deg, 1.0f, 0.15f);
+    return linked_hair_params(1.55f, glm::vec3(0.432f, 0.612f, 0.98f), radians(-7.5f), radians(7.5f), 1.0f, 0.15f);
 }
 
 HairParams linked_hair_params(float eta, glm::vec3 sigma_a, float alpha_R, float beta_R, float ecc_a, float w_c) {
@@ -59,7 +59,7 @@ void validate(const HairParams& p, const std::string& place) {
     check_range(place, "beta_TT", p.beta_TT, kMinBeta, kMaxBeta, false, "rad");
     check_range(place, "beta_TRT", p.beta_TRT, kMinBeta, kMaxBeta, false, "rad");
     check_range(place, "eccentricity a", p.ecc_a, kMinEcc, kMaxEcc, false, "(eta* must stay above 1)");
-    check_range(place, "w_c", p.w_c, kMinLambda, 3.14159265f, false, "rad");
+    check_range(place, "w_c", p.w_c, kMinLambda, kPiF, false, "rad");
     check_range(place, "delta_eta_prime", p.delta_eta_p, 1e-3f, 2.0f, false, "");
     check_range(place, "d_b", p.d_b, 0.0f, 1.0f, false, "");
 }

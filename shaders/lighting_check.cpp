@@ -1,43 +1,34 @@
 #include "shaders/lighting_check.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <mutex>
 #include <numeric>
 #include <random>
-#include <thread>
 
+#include "models/core/parallel.h"
+#include "models/core/random.h"
+#include "models/core/units.h"
 #include "shaders/marschner_reference.h"
 
 namespace coif::shading::check {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
-
 // Energy of an SRBF light of unit coefficient: ∫G dω = πλ²(1 - e^{-4/λ²}).
 double srbf_energy(double lambda) { return kPi * lambda * lambda * (1.0 - std::exp(-4.0 / (lambda * lambda))); }
 
-// Runs fn(i) for i in [0, n) on up to two threads, calling progress after each.
+// Runs fn(i) for i in [0, n) on every hardware thread, calling progress (serialised) after each.
 template <class Fn>
-void parallel_for(int n, Fn fn, const std::function<void()>& progress) {
-    const int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 2);
-    std::atomic<int> next{0};
+void parallel_for_with_progress(int n, Fn fn, const std::function<void()>& progress) {
     std::mutex progress_mutex;
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-        pool.emplace_back([&] {
-            for (int i = next++; i < n; i = next++) {
-                fn(i);
-                if (progress) {
-                    std::lock_guard lock(progress_mutex);
-                    progress();
-                }
-            }
-        });
-    for (auto& th : pool) th.join();
+    parallel_for(static_cast<std::size_t>(std::max(n, 0)), 0, [&](std::size_t i) {
+        fn(static_cast<int>(i));
+        if (progress) {
+            const std::lock_guard lock(progress_mutex);
+            progress();
+        }
+    });
 }
 
 double weighted_quantile(std::vector<std::pair<double, double>> ew, double q) {
@@ -63,7 +54,7 @@ double rel_error(glm::dvec3 approx, glm::dvec3 ref) {
 }  // namespace
 
 std::vector<Config> random_configs(int count, std::uint64_t seed) {
-    std::mt19937_64 rng(seed);
+    Rng rng = seeded_rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     const auto dir = [&](float& theta, float& phi) {
         theta = float(std::asin(2.0 * U(rng) - 1.0));  // uniform on the sphere: sin θ uniform
@@ -76,8 +67,8 @@ std::vector<Config> random_configs(int count, std::uint64_t seed) {
         dir(c.theta_o, c.phi_o);
         const float eta = float(1.4 + 0.4 * U(rng));
         const glm::vec3 sigma_a(3.0 * U(rng), 3.0 * U(rng), 3.0 * U(rng));
-        const float alpha_R = float(-10.0 * kDeg * U(rng));
-        const float beta_R = float((2.0 + 13.0 * U(rng)) * kDeg);
+        const float alpha_R = float(-10.0 * kRadiansPerDegree * U(rng));
+        const float beta_R = float((2.0 + 13.0 * U(rng)) * kRadiansPerDegree);
         const float ecc = float(0.85 + 0.3 * U(rng));
         const float w_c = float(0.05 + 0.25 * U(rng));
         c.params = linked_hair_params(eta, sigma_a, alpha_R, beta_R, ecc, w_c);
@@ -121,7 +112,7 @@ std::vector<SingleRow> check_single(const std::vector<Config>& configs, const st
     std::vector<std::vector<double>> errors(variants.size(), std::vector<double>(n));
     std::vector<double> weights(n);
     const LutSet tables = global_lighting_tables().set();
-    parallel_for(
+    parallel_for_with_progress(
         int(n),
         [&](int i) {
             const Config& c = configs[size_t(i)];
@@ -327,11 +318,16 @@ std::vector<MultipleRow> check_multiple(int param_sets, int per_set, std::uint64
                                         const std::function<void()>& progress) {
     const std::vector<Config> sets = random_configs(param_sets, seed);
     std::vector<Config> all;
-    std::vector<double> eg, el, et, w_g, w_l, w_t;
-    std::mutex mutex;
-    parallel_for(
+    // Each parameter set fills its own slot; the slots are joined in set order, so the figures do not
+    // depend on the thread count.
+    struct Errors {
+        std::vector<double> eg, el, et, w_g, w_l, w_t;
+    };
+    std::vector<Errors> by_set(static_cast<size_t>(std::max(param_sets, 0)));
+    parallel_for_with_progress(
         param_sets,
         [&](int s) {
+            Errors& out = by_set[size_t(s)];
             HairParams p = sets[size_t(s)].params;
             p.ecc_a = 1.0f;  // dual scattering uses the circular fibre (srbf_multiple.glsl)
             const LightingEvaluator eval(p, default_config(4));
@@ -344,16 +340,20 @@ std::vector<MultipleRow> check_multiple(int param_sets, int per_set, std::uint64
                 const glm::dvec3 l = eval.ms_local(c.theta_o, c.phi_o, c.theta_j, c.phi_j, c.lambda_j, c.sigma_f2);
                 const double e = srbf_energy(c.lambda_j);
                 const glm::dvec3 t_ref = g_ref + double(p.d_b) * l_ref, t = g + double(p.d_b) * l;
-                std::lock_guard lock(mutex);
-                eg.push_back(rel_error(g, g_ref));
-                w_g.push_back((g_ref.x + g_ref.y + g_ref.z) / e);
-                el.push_back(rel_error(l, l_ref));
-                w_l.push_back((l_ref.x + l_ref.y + l_ref.z) / e);
-                et.push_back(rel_error(t, t_ref));
-                w_t.push_back((t_ref.x + t_ref.y + t_ref.z) / e);
+                out.eg.push_back(rel_error(g, g_ref));
+                out.w_g.push_back((g_ref.x + g_ref.y + g_ref.z) / e);
+                out.el.push_back(rel_error(l, l_ref));
+                out.w_l.push_back((l_ref.x + l_ref.y + l_ref.z) / e);
+                out.et.push_back(rel_error(t, t_ref));
+                out.w_t.push_back((t_ref.x + t_ref.y + t_ref.z) / e);
             }
         },
         progress);
+    std::vector<double> eg, el, et, w_g, w_l, w_t;
+    const auto append = [](std::vector<double>& to, const std::vector<double>& from) { to.insert(to.end(), from.begin(), from.end()); };
+    for (const Errors& r : by_set) {
+        append(eg, r.eg), append(w_g, r.w_g), append(el, r.el), append(w_l, r.w_l), append(et, r.et), append(w_t, r.w_t);
+    }
     return {{"global M^G", error_stats(eg, w_g)},
             {"local M^L", error_stats(el, w_l)},
             {"M^G + d_b M^L", error_stats(et, w_t)}};

@@ -5,14 +5,13 @@
 #include <cstdio>
 #include <sstream>
 
+#include "models/core/units.h"
 #include "shaders/lighting.h"
 #include "shaders/marschner_reference.h"
 
 namespace coif::shading {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 const glm::vec3 kColors[] = {{0.85f, 0.1f, 0.1f}, {0.1f, 0.45f, 0.85f}, {0.1f, 0.65f, 0.2f}, {0.7f, 0.4f, 0.0f},
                              {0.5f, 0.1f, 0.7f}, {0.2f, 0.2f, 0.2f}};

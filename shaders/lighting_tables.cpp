@@ -4,31 +4,24 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <thread>
 #include <vector>
 
+#include "models/core/parallel.h"
+#include "models/core/units.h"
 #include "shaders/lighting.h"
 
 namespace coif::shading {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Rows y = 0..height-1 of `fill(y)` on up to two threads (the tables are independent per row).
+// Rows y = 0..height-1 of `fill(y)` on every hardware thread (the tables are independent per row).
 template <class Fn>
 void parallel_rows(int height, Fn fill) {
-    const int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 2);
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-            for (int y = t; y < height; y += threads) fill(y);
-        });
-    for (auto& th : pool) th.join();
+    parallel_for(static_cast<std::size_t>(std::max(height, 0)), 0, [&](std::size_t y) { fill(static_cast<int>(y)); });
 }
 
 double von_mises_weight(double x, double lambda) {

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/units.h"
+
 namespace coif::shading::reference {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double wrap(double x) { return x - 2.0 * kPi * std::floor((x + kPi) / (2.0 * kPi)); }
 

@@ -20,6 +20,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "models/core/units.h"  // radians(): degrees at the interface, radians in the code
+
 namespace coif::cli {
 
 inline constexpr int kExitOk = 0;
@@ -50,8 +52,5 @@ void add_json_flag(CLI::App* app, bool& json);
 
 // Prints a JSON document on stdout (2-space indent).
 void print_json(const nlohmann::json& doc);
-
-// Degrees at the interface, radians in the code.
-inline double radians(double degrees) { return degrees * 0.017453292519943295; }
 
 }  // namespace coif::cli

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "models/core/error.h"
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 #include "online/fragment_lists.h"
 #include "models/core/statistics.h"
 #include "online/gl_context.h"

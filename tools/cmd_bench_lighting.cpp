@@ -7,10 +7,12 @@
 #include <cstdio>
 #include <memory>
 #include <random>
-#include <thread>
 #include <vector>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
+#include "models/core/random.h"
+#include "models/core/units.h"
 #include "online/benchmarks.h"
 #include "online/gl_context.h"
 #include "shaders/lighting_check.h"
@@ -50,34 +52,27 @@ void add_bench_lighting(CLI::App& root) {
         const HairParams params = default_hair_params();
         const LightingConfig config = o->paper ? paper_config(o->segments) : default_config(o->segments);
         const LightingEvaluator eval(params, config);
-        std::mt19937_64 rng(5);
+        coif::Rng rng = coif::seeded_rng(5);
         std::uniform_real_distribution<float> U(0.0f, 1.0f);
         std::vector<glm::vec4> points(size_t(o->points)), lights(size_t(o->lights));
-        for (auto& p : points) p = glm::vec4(std::asin(2.0f * U(rng) - 1.0f), 6.2831853f * U(rng) - 3.1415927f, 0, 0);
+        for (auto& p : points) p = glm::vec4(std::asin(2.0f * U(rng) - 1.0f), coif::kTwoPiF * U(rng) - coif::kPiF, 0, 0);
         for (auto& l : lights)
-            l = glm::vec4(std::asin(2.0f * U(rng) - 1.0f), 6.2831853f * U(rng) - 3.1415927f,
+            l = glm::vec4(std::asin(2.0f * U(rng) - 1.0f), coif::kTwoPiF * U(rng) - coif::kPiF,
                           0.05f * std::pow(40.0f, U(rng)), 0.02f * U(rng));
 
-        // CPU: the GLSL compiled as C++.
+        // CPU: the GLSL compiled as C++, on every hardware thread.
         std::vector<glm::vec3> cpu_single(points.size()), cpu_multiple(points.size());
+        const int cpu_threads = coif::thread_count(0);
         const auto t0 = std::chrono::steady_clock::now();
-        {
-            const int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 2);
-            std::vector<std::thread> pool;
-            for (int t = 0; t < threads; ++t)
-                pool.emplace_back([&, t] {
-                    for (size_t i = size_t(t); i < points.size(); i += size_t(threads)) {
-                        glm::vec3 s(0.0f), m(0.0f);
-                        for (const auto& l : lights) {
-                            s += eval.single(points[i].x, points[i].y, l.x, l.y, l.z);
-                            if (o->multiple) m += eval.multiple(points[i].x, points[i].y, l.x, l.y, l.z, l.w);
-                        }
-                        cpu_single[i] = s;
-                        cpu_multiple[i] = m;
-                    }
-                });
-            for (auto& th : pool) th.join();
-        }
+        coif::parallel_for(points.size(), cpu_threads, [&](size_t i) {
+            glm::vec3 s(0.0f), m(0.0f);
+            for (const auto& l : lights) {
+                s += eval.single(points[i].x, points[i].y, l.x, l.y, l.z);
+                if (o->multiple) m += eval.multiple(points[i].x, points[i].y, l.x, l.y, l.z, l.w);
+            }
+            cpu_single[i] = s;
+            cpu_multiple[i] = m;
+        });
         const double cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const double pairs = double(points.size()) * double(lights.size());
         const auto cost = check::count_fetches(o->segments);
@@ -89,7 +84,7 @@ void add_bench_lighting(CLI::App& root) {
                                  {"multiple_scattering", o->multiple},
                                  {"tables_build_seconds", global_lighting_tables().build_seconds},
                                  {"ms_tables_build_seconds", eval.ms_tables().build_seconds},
-                                 {"cpu_threads", std::clamp(int(std::thread::hardware_concurrency()), 1, 2)},
+                                 {"cpu_threads", cpu_threads},
                                  {"cpu_seconds", cpu_seconds},
                                  {"cpu_light_points_per_s", pairs / cpu_seconds}};
         for (const auto& c : cost) result["texture_fetches"].push_back({{"what", c.what}, {"per_light", c.fetches_per_light}});

@@ -19,7 +19,7 @@
 #include "models/core/image.h"
 #include "models/strands.h"
 #include "offline/envmap.h"
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 #include "offline/srbf_fit.h"
 #include "offline/srbf_lights.h"
 #include "tools/assets.h"

@@ -1,11 +1,11 @@
 // coif compare A B — image-quality numbers of B (test) against A (reference): PSNR, SSIM and FLIP on
-// linear and tone-mapped pixels over a mask of hair pixels (offline/image_metrics.h).
+// linear and tone-mapped pixels over a mask of hair pixels (models/core/image_metrics.h).
 #include <cmath>
 #include <cstdio>
 
 #include "models/core/error.h"
 #include "models/core/image.h"
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 #include "tools/cli.h"
 
 namespace {

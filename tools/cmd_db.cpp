@@ -1,7 +1,6 @@
 // coif db build|merge|inspect|plot|eval|index|coverage — the HRIR database (004 §4–§5), built from the
 // command line and shardable over any batch scheduler (docs/db.md).
 #include <cstdio>
-#include <thread>
 
 #include "db/coverage.h"
 #include "db/eval.h"
@@ -10,6 +9,7 @@
 #include "db/satf.h"
 #include "models/core/checksum.h"
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"
@@ -36,7 +36,8 @@ void add_db(CLI::App& root) {
         "after a killed build. Prints records/second.");
     build->add_option("--sectors", bo->b.params.sectors, "Sectors in the whole build (default 1000)");
     build->add_option("--seed", bo->b.params.seed, "Global seed (default 1)");
-    build->add_option("--threads", bo->b.threads, "Worker threads (default: 1)");
+    build->add_option("--threads", bo->b.threads, "Worker threads (default 0: every hardware thread; was 1 before v0.2)")
+        ->check(CLI::NonNegativeNumber);
     build->add_option("--shard", bo->shard, "Build only shard k of n (0-based k), e.g. 3/8 (default 0/1: everything)");
     build->add_flag("--resume", bo->b.resume, "Reuse the valid finished chunks in FILE.parts/ (default: start afresh)");
     build->add_option("--chunk", bo->b.chunk, "Sectors per resumable chunk (default 64)");
@@ -58,9 +59,10 @@ void add_db(CLI::App& root) {
         bo->b.shard = coif::parse_shard(bo->shard);
         bo->b.params.value_type = bo->use_float ? coif::ValueType::Float : coif::ValueType::Half;
         const coif::BuildReport r = coif::build_database(bo->b, bo->out);
+        const int threads = coif::thread_count(bo->b.threads);
         std::fprintf(stderr, "wrote %s: sectors %llu..%llu (%llu reused), %.1f records/s on %d thread%s, %.2f MB\n", bo->out.c_str(),
                      static_cast<unsigned long long>(r.first), static_cast<unsigned long long>(r.first + r.count),
-                     static_cast<unsigned long long>(r.reused), r.records_per_second(), bo->b.threads, bo->b.threads == 1 ? "" : "s",
+                     static_cast<unsigned long long>(r.reused), r.records_per_second(), threads, threads == 1 ? "" : "s",
                      static_cast<double>(fs::file_size(bo->out)) / 1e6);
         if (bo->save_index && bo->b.shard.count == 1) {
             const coif::HrirDatabase d = coif::HrirDatabase::open(bo->out);
@@ -166,7 +168,8 @@ void add_db(CLI::App& root) {
     eval->add_option("--k", eo->e.ks, "Neighbour counts to try (default 1 2 4 8 16)");
     eval->add_option("--features", eo->sets, "Feature sets to try: paper, paper+shape, rich, rich+shape (default all)");
     eval->add_option("--blend", eo->blends, "Blends to try: idw, gauss (default both)");
-    eval->add_option("--threads", eo->e.threads, "Worker threads (default 1)");
+    eval->add_option("--threads", eo->e.threads, "Worker threads (default 0: every hardware thread; was 1 before v0.2)")
+        ->check(CLI::NonNegativeNumber);
     eval->add_flag("--study", eo->study, "Also run the storage/resolution study");
     coif::cli::add_json_flag(eval, eo->json);
     coif::cli::examples(eval, "  coif db eval hrir.db --held-out 200 --threads 2\n  coif db eval hrir.db --held-out 50 --k 4 --features rich+shape --json");

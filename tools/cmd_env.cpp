@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "models/core/atomic_file.h"
+#include "models/core/units.h"
 #include "models/core/checksum.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
@@ -31,8 +32,8 @@ void check_output_folder(const fs::path& path, const char* option) {
 
 // Direction → (elevation above the horizon, azimuth from +x toward +z), degrees.
 glm::dvec2 elevation_azimuth_degrees(const glm::vec3& w) {
-    const double elevation = std::asin(std::clamp(double(w.y), -1.0, 1.0)) * 180.0 / M_PI;
-    const double azimuth = std::atan2(double(w.z), double(w.x)) * 180.0 / M_PI;
+    const double elevation = coif::degrees(std::asin(std::clamp(double(w.y), -1.0, 1.0)));
+    const double azimuth = coif::degrees(std::atan2(double(w.z), double(w.x)));
     return {elevation, azimuth};
 }
 
@@ -189,7 +190,7 @@ void inspect_command(const std::string& file, const std::string& map_path, bool 
         const glm::dvec2 ea = elevation_azimuth_degrees(l.omega);
         const double e = coif::luminance(glm::dvec3(l.L)) * coif::glsl::srbf_integral(l.lambda);
         std::printf("  %3zu   %10.4g %10.4g %10.4g   %6.1f  %6.1f   %6.4f  (%5.1f)  %5.1f %%\n", i, l.L.r, l.L.g, l.L.b,
-                    ea.x, ea.y, l.lambda, l.lambda * 180.0 / M_PI, total_y > 0 ? 100.0 * e / total_y : 0.0);
+                    ea.x, ea.y, l.lambda, coif::degrees(double(l.lambda)), total_y > 0 ? 100.0 * e / total_y : 0.0);
     }
     std::printf("\n  elev. = degrees above the horizon (y up); azim. = degrees from +x toward +z (map column u = 0.5 + azim/360);\n"
                 "  lambda = bandwidth of G = exp(2(w.w_j - 1)/lambda^2), in radians and (degrees); energy = share of the\n"

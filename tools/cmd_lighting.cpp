@@ -148,8 +148,8 @@ void add_lighting(CLI::App& root) {
     coif::cli::examples(plot, "  coif lighting plot -o lighting_plots/\n  coif lighting plot -o dark/ --sigma-a 1.2 1.6 2.4 --eta 1.6");
     plot->callback([po] {
         const HairParams params = linked_hair_params(po->eta, glm::vec3(po->sigma_a[0], po->sigma_a[1], po->sigma_a[2]),
-                                                     float(coif::cli::radians(po->alpha_R)),
-                                                     float(coif::cli::radians(po->beta_R)), po->ecc, po->w_c);
+                                                     float(coif::radians(po->alpha_R)),
+                                                     float(coif::radians(po->beta_R)), po->ecc, po->w_c);
         validate(params, "coif lighting plot options");
         const fs::path dir(po->out);
         std::error_code ec;

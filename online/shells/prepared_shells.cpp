@@ -7,8 +7,8 @@
 #include <string>
 
 #include "models/core/error.h"
+#include "models/sector_features.h"
 #include "models/strands.h"
-#include "offline/sector_generator.h"
 
 namespace coif {
 namespace {

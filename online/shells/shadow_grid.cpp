@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "models/core/error.h"
+#include "models/core/units.h"
 
 namespace coif {
 
@@ -50,7 +50,7 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
     g.dims = glm::min(glm::ivec3(glm::ceil(size / g.voxel)) + 4, glm::ivec3(max_dim));
     g.origin = 0.5f * (lo + hi) - 0.5f * g.extent();
     g.values.assign(static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z, 0.0f);
-    const double scale = std::numbers::pi * gaussian_width / (static_cast<double>(g.voxel) * g.voxel * g.voxel);
+    const double scale = kPi * gaussian_width / (static_cast<double>(g.voxel) * g.voxel * g.voxel);
     const auto splat = [&](glm::vec3 q, float length) {
         const glm::vec3 f0 = (q - g.origin) / g.voxel - 0.5f;
         const glm::ivec3 i0 = glm::ivec3(glm::floor(f0));

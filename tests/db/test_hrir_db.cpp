@@ -54,6 +54,10 @@ TEST(HrirDb, BuildsAreDeterministicAcrossThreadCounts) {
     o.threads = 2;
     coif::build_database(o, dir / "b.db");
     EXPECT_EQ(bytes(dir / "a.db"), bytes(dir / "b.db"));
+    o.threads = 0;  // the default: every hardware thread
+    EXPECT_EQ(coif::BuildOptions{}.threads, 0);
+    coif::build_database(o, dir / "c.db");
+    EXPECT_EQ(bytes(dir / "a.db"), bytes(dir / "c.db"));
     EXPECT_FALSE(fs::exists(dir / "a.db.parts"));
     const auto db = coif::HrirDatabase::open(dir / "a.db");
     EXPECT_EQ(db.size(), 7u);

@@ -1,4 +1,4 @@
-// Image-quality metrics (offline/image_metrics.h) and `coif compare`.
+// Image-quality metrics (models/core/image_metrics.h) and `coif compare`.
 #include <cmath>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 
 #include "models/core/error.h"
 #include "models/core/image.h"
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 #include "tests/common/run.h"
 #include "tests/common/test_data.h"
 

@@ -7,7 +7,7 @@
 
 #include "models/core/error.h"
 #include "models/core/image.h"
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 #include "offline/reference.h"
 #include "offline/reference_fiber.h"
 #include "shaders/marschner_reference.h"

@@ -1,6 +1,7 @@
 // Random generalized sectors (offline/sector_generator.h): determinism and ranges.
 #include <gtest/gtest.h>
 
+#include "models/sector_features.h"
 #include "offline/sector_generator.h"
 
 namespace {

@@ -46,11 +46,12 @@
 #include <vector>
 
 #include "models/core/image.h"
+#include "models/core/units.h"
 
 namespace coif {
 
 // FLIP's default observer: 0.7 m wide 3840-px display seen from 0.7 m, 3840 · π/180 ≈ 67.02 px/degree.
-inline constexpr double kFlipPixelsPerDegree = 3840.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double kFlipPixelsPerDegree = 3840.0 * kPi / 180.0;
 // A pixel is hair when at least 5 % of it is covered (alpha masks); thin fibres cover most hair pixels
 // only partly, so a 0.5 threshold would drop most of them.
 inline constexpr float kMaskAlphaThreshold = 0.05f;

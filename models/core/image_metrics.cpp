@@ -1,4 +1,4 @@
-#include "offline/image_metrics.h"
+#include "models/core/image_metrics.h"
 
 #include <algorithm>
 #include <array>
@@ -7,11 +7,10 @@
 #include <limits>
 
 #include "models/core/error.h"
+#include "models/core/units.h"
 
 namespace coif {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // ───────────────────────── separable filtering (borders clamped, as FLIP and SSIM assume) ─────────────────────────
 
