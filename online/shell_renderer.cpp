@@ -495,21 +495,21 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     // read: the lighting module's tables and parameters, the lights, their shadows, the painted σa.
     const auto set_light_uniforms = [&](const Program& prog) {
         m.lighting_textures.bind(prog, 2);
-        set_lighting_uniforms(prog, s.hair, s.config);
+        set_lighting_uniforms(prog, s.hair.fibre, s.hair.config);
         glUniform1i(prog.uniform("u_light_count"), m.light_count);
-        glUniform1i(prog.uniform("u_lobes"), s.lobes);
-        glUniform1i(prog.uniform("u_multiple"), s.multiple ? 1 : 0);
+        glUniform1i(prog.uniform("u_lobes"), s.hair.lobes);
+        glUniform1i(prog.uniform("u_multiple"), s.hair.multiple ? 1 : 0);
         glUniform1i(prog.uniform("u_shadows"), s.shadows && m.light_count > 0 ? 1 : 0);
         glUniform1i(prog.uniform("u_absorption_on"), m.absorption_on ? 1 : 0);
         if (m.absorption_on) {
             glBindTextureUnit(2 + shading::kLutCount, m.absorption.id());
             glUniform1i(prog.uniform("u_absorption"), 2 + shading::kLutCount);
         }
-        glUniform1f(prog.uniform("u_d_f"), s.d_f);
+        glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.lights.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.shadows.id());
     };
-    if (!floor_only) m.lighting_textures.update(s.hair, s.config);  // validates; rebuilds only on a change
+    if (!floor_only) m.lighting_textures.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     if (!floor_only) {
         m.lighting.use();
         set_light_uniforms(m.lighting);

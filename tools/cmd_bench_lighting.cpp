@@ -13,6 +13,7 @@
 #include "models/core/error.h"
 #include "online/gl.h"
 #include "online/gl_context.h"
+#include "online/lighting_uniforms.h"
 #include "shaders/lighting_check.h"
 #include "tools/cli.h"
 
@@ -126,13 +127,7 @@ void add_bench_lighting(CLI::App& root) {
             glUniform1i(program.uniform("u_num_points"), o->points);
             glUniform1i(program.uniform("u_num_lights"), o->lights);
             glUniform1i(program.uniform("u_multiple"), o->multiple ? 1 : 0);
-            const HairParams& p = params;
-            glUniform4f(program.uniform("u_hair0"), p.eta, p.sigma_a.r, p.sigma_a.g, p.sigma_a.b);
-            glUniform4f(program.uniform("u_hair1"), p.alpha_R, p.alpha_TT, p.alpha_TRT, p.beta_R);
-            glUniform4f(program.uniform("u_hair2"), p.beta_TT, p.beta_TRT, p.ecc_a, p.w_c);
-            const int flags = (config.paper_schlick ? 1 : 0) | (config.paper_norm ? 2 : 0) |
-                              (config.paper_theta_gauss ? 4 : 0) | (config.paper_tt ? 8 : 0);
-            glUniform4f(program.uniform("u_hair3"), p.delta_eta_p, p.d_b, float(config.segments), float(flags));
+            coif::gl::set_lighting_uniforms(program, params, config);
             const GLuint groups = GLuint((o->points + 63) / 64);
             glDispatchCompute(groups, 1, 1);  // warm-up
             glFinish();
