@@ -1,6 +1,7 @@
 #include "shaders/hair_parameters.h"
 
 #include <cmath>
+#include <limits>
 
 #include "models/core/error.h"
 
@@ -113,7 +114,11 @@ Table make_table() {
 void validate(const HairParameters& hair, const std::string& place) {
     validate(hair.fibre, place);
     validate(hair.config, place);
-    if (hair.lobes < 0 || hair.lobes > kAllLobes) throw Error::parameter(place, "lobes must be a bit set of R (1), TT (2), TRT (4)");
+    if (hair.lobes < 0 || hair.lobes > kAllLobes) {
+        std::string bits;
+        for (const Lobe& lobe : kLobes) bits += (bits.empty() ? "" : ", ") + std::string(lobe.name) + " (" + std::to_string(lobe.bit) + ")";
+        throw Error::parameter(place, "lobes must be a bit set of " + bits);
+    }
     if (!(hair.d_f >= 0.0f && hair.d_f <= 1.0f)) throw Error::parameter(place, "d_f must be in [0, 1]");
 }
 

@@ -3,17 +3,14 @@
 // (HairParameters), the lobe table, the C++ mirror of the GLSL structs' fields, and the parameters
 // file's hair keys (a models/core/param_table.h table). GL-free.
 //
-// Hair keys of a parameters file (every key optional; degrees at the interface, radians in the struct):
-//   eta, sigma_a [r, g, b], alpha_R_deg, beta_R_deg, alpha_TT_deg, alpha_TRT_deg, beta_TT_deg,
-//   beta_TRT_deg, ecc_a, w_c_deg, delta_eta_p, d_b, segments, lobes {"R": bool, "TT": bool, "TRT": bool},
-//   multiple, d_f
-// α_R / β_R alone keep 000's links for TT and TRT (link_lobes_to_R); a TT/TRT key overrides its link.
+// The parameters file's hair keys are hair_parameter_table()'s (eta, sigma_a, alpha_R_deg, …: `coif render
+// --help` lists them with their ranges); every key is optional, angles are in degrees at the interface and
+// radians in the struct. α_R / β_R alone keep 000's links for TT and TRT (link_lobes_to_R); a TT/TRT key overrides its link.
 // Degrees convert to radians in float, radians = float(degrees) · float(π/180), as the file always has (so an
 // old file means the same radians, bit for bit). The writer inverts that exactly: write → read gives the same
 // struct for every angle set from degrees (a file, a shorthand, a slider) and for the defaults; an angle set
 // in radians that no float number of degrees reaches (about 9 % of floats) reads back 1 ulp away.
-// `coif render --help` lists every key with its range (params_help(hair_parameter_table())); the renderer's
-// own keys are online/shells/shell_settings.h's, and read_shell_settings reads one file through both.
+// The renderer's own keys are online/shells/shell_settings.h's; read_shell_settings reads one file through both.
 #include <array>
 #include <string>
 #include <variant>

@@ -45,6 +45,7 @@ ParamTable<ShellSettings> make_table() {
     Param<S> compositing{"compositing", ParamKind::choice, "", 0, 0, false,
                          "exact (per-pixel fragment lists), sorted (clusters back to front) or unsorted",
                          {}, {}, {}, {}};
+    // The choice's index is the enum's value: the names in the enum's order.
     for (Compositing c : {Compositing::sorted, Compositing::unsorted, Compositing::exact}) compositing.names.emplace_back(compositing_name(c));
     compositing.get = [](const S& s, int) { return static_cast<double>(s.compositing); };
     compositing.set = [](S& s, int, double v) { s.compositing = static_cast<Compositing>(static_cast<int>(v)); };
