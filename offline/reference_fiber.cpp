@@ -7,6 +7,7 @@
 #include "models/core/error.h"
 #include "models/core/parallel.h"
 #include "models/core/units.h"
+#include "shaders/hair_parameters.h"
 #include "shaders/marschner_reference.h"
 
 namespace coif {
@@ -86,12 +87,12 @@ std::shared_ptr<MarschnerTable> build_table(const shading::HairParams& hp) {
     table->eta_lo = std::min(glsl::eta_star_1(hp.eta, hp.ecc_a), glsl::eta_star_2(hp.eta, hp.ecc_a));
     table->eta_hi = std::max(glsl::eta_star_1(hp.eta, hp.ecc_a), glsl::eta_star_2(hp.eta, hp.ecc_a));
     // R and TT use η; TRT uses η* (= η when a = 1), so lobes R, TT hold one η slice each and TRT n_eta.
-    table->values.assign(static_cast<size_t>(3) * table->n_eta * MarschnerTable::kTheta * MarschnerTable::kPhi, glm::vec3(0.0f));
+    table->values.assign(static_cast<size_t>(shading::kLobeCount) * table->n_eta * MarschnerTable::kTheta * MarschnerTable::kPhi, glm::vec3(0.0f));
     struct Job {
         int lobe, e, t;
     };
     std::vector<Job> jobs;
-    for (int lobe = 0; lobe < 3; ++lobe)
+    for (int lobe = 0; lobe < shading::kLobeCount; ++lobe)
         for (int e = 0; e < (lobe == glsl::LOBE_TRT ? table->n_eta : 1); ++e)
             for (int t = 0; t < MarschnerTable::kTheta; ++t) jobs.push_back({lobe, e, t});
     parallel_for(jobs.size(), 0, [&](size_t j) {
@@ -128,7 +129,7 @@ glm::vec3 MarschnerFiber::S(const FiberFrame& frame, const glm::vec3& wi, const 
     // Eccentric TRT: η*(φh) with cos 2φh = cos(φi + φo) (000 eq. 24; marschner_reference.h).
     const float eta_trt = params_.ecc_a != 1.0f ? glsl::eta_star(params_.eta, params_.ecc_a, std::cos(phi_i + phi_o)) : params_.eta;
     glm::vec3 s(0.0f);
-    for (int lobe = 0; lobe < 3; ++lobe) {
+    for (int lobe = 0; lobe < shading::kLobeCount; ++lobe) {
         // 000 eq. 6: S_t = M_t(θh) N_t(η, θd, φ) / cos² θd.
         const float m = glsl::M_lobe(params_, lobe, theta_h);
         if (m < 1e-12f) continue;

@@ -32,6 +32,8 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders/srbf_light.h"
+
 namespace coif {
 
 // Largest light set accepted anywhere (fit and file): 000 renders with 30–60 lights; 1024 leaves room
@@ -41,12 +43,6 @@ inline constexpr int kMaxSrbfLights = 1024;
 // ~10 an SRBF is constant to 4 % over the sphere (e^{−4/100}), so larger values mean nothing more.
 inline constexpr double kSrbfLambdaMinAllowed = 0.001;
 inline constexpr double kSrbfLambdaMaxAllowed = 10.0;
-
-struct SrbfLight {
-    glm::vec3 L{0.0f};                 // RGB coefficient L_j
-    glm::vec3 omega{0.0f, 1.0f, 0.0f}; // centre ω_j, unit
-    float lambda = 1.0f;               // bandwidth λ_j
-};
 
 // What a light set was fitted from and how (recorded in the lights file).
 struct SrbfSource {

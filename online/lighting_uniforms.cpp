@@ -1,18 +1,21 @@
 #include "online/lighting_uniforms.h"
 
 #include <cstdio>
+#include <string>
+#include <variant>
 #include <vector>
+
+#include "shaders/hair_parameters.h"
 
 namespace coif::gl {
 
 bool same_lighting_tables(const shading::HairParams& a, const shading::LightingConfig& ca, const shading::HairParams& b,
                           const shading::LightingConfig& cb) {
-    // σa is not compared: the dual-scattering tables span every σa (shaders/lighting/luts.glsl).
-    return a.eta == b.eta && a.alpha_R == b.alpha_R && a.alpha_TT == b.alpha_TT &&
-           a.alpha_TRT == b.alpha_TRT && a.beta_R == b.beta_R && a.beta_TT == b.beta_TT && a.beta_TRT == b.beta_TRT &&
-           a.ecc_a == b.ecc_a && a.w_c == b.w_c && a.delta_eta_p == b.delta_eta_p && a.d_b == b.d_b &&
-           ca.segments == cb.segments && ca.paper_schlick == cb.paper_schlick && ca.paper_norm == cb.paper_norm &&
-           ca.paper_theta_gauss == cb.paper_theta_gauss && ca.paper_tt == cb.paper_tt;
+    for (const shading::HairParamsField& f : shading::kHairParamsFields)
+        if (f.in_ms_tables && !std::visit([&](auto member) { return a.*member == b.*member; }, f.member)) return false;
+    for (const shading::LightingConfigField& f : shading::kLightingConfigFields)
+        if (!std::visit([&](auto member) { return ca.*member == cb.*member; }, f.member)) return false;
+    return true;
 }
 
 LightingTextures::LightingTextures() {
@@ -42,25 +45,15 @@ void LightingTextures::bind(const Program& program, int first_unit) const {
 }
 
 void set_lighting_uniforms(const Program& program, const shading::HairParams& hair, const shading::LightingConfig& config) {
-    const auto f = [&](const char* name, float v) { glUniform1f(program.uniform(name), v); };
-    const auto i1 = [&](const char* name, int v) { glUniform1i(program.uniform(name), v); };
-    f("u_hair.eta", hair.eta);
-    glUniform3fv(program.uniform("u_hair.sigma_a"), 1, &hair.sigma_a.x);
-    f("u_hair.alpha_R", hair.alpha_R);
-    f("u_hair.alpha_TT", hair.alpha_TT);
-    f("u_hair.alpha_TRT", hair.alpha_TRT);
-    f("u_hair.beta_R", hair.beta_R);
-    f("u_hair.beta_TT", hair.beta_TT);
-    f("u_hair.beta_TRT", hair.beta_TRT);
-    f("u_hair.ecc_a", hair.ecc_a);
-    f("u_hair.w_c", hair.w_c);
-    f("u_hair.delta_eta_p", hair.delta_eta_p);
-    f("u_hair.d_b", hair.d_b);
-    i1("u_config.segments", config.segments);
-    i1("u_config.paper_schlick", config.paper_schlick);
-    i1("u_config.paper_norm", config.paper_norm);
-    i1("u_config.paper_theta_gauss", config.paper_theta_gauss);
-    i1("u_config.paper_tt", config.paper_tt);
+    for (const shading::HairParamsField& f : shading::kHairParamsFields) {
+        const GLint location = program.uniform(("u_hair." + std::string(f.name)).c_str());
+        if (const auto* member = std::get_if<float shading::HairParams::*>(&f.member)) glUniform1f(location, hair.**member);
+        else glUniform3fv(location, 1, &(hair.*std::get<glm::vec3 shading::HairParams::*>(f.member)).x);
+    }
+    for (const shading::LightingConfigField& f : shading::kLightingConfigFields) {
+        const GLint location = program.uniform(("u_config." + std::string(f.name)).c_str());
+        std::visit([&](auto member) { glUniform1i(location, static_cast<GLint>(config.*member)); }, f.member);
+    }
 }
 
 Buffer make_lights_buffer(std::span<const SrbfLight> lights) {

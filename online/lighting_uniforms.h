@@ -10,9 +10,9 @@
 #include <array>
 #include <span>
 
-#include "offline/srbf_lights.h"
 #include "online/gl.h"
 #include "shaders/lighting.h"
+#include "shaders/srbf_light.h"
 
 namespace coif::gl {
 
@@ -21,7 +21,8 @@ inline constexpr std::array<const char*, shading::kLutCount> kLutUniformNames = 
     "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
     "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma", "lut_ms_af"};
 
-// True when (a, ca) and (b, cb) give the same dual-scattering tables (every field they read; not σa).
+// True when (a, ca) and (b, cb) give the same dual-scattering tables (every field they read,
+// shading::kHairParamsFields' in_ms_tables, and every config field).
 bool same_lighting_tables(const shading::HairParams& a, const shading::LightingConfig& ca, const shading::HairParams& b,
                           const shading::LightingConfig& cb);
 
@@ -43,7 +44,8 @@ private:
     shading::LightingConfig config_{};
 };
 
-// u_hair.* and u_config.* of the program in use.
+// u_hair.* and u_config.* of the program in use: every field of shading::kHairParamsFields and
+// shading::kLightingConfigFields.
 void set_lighting_uniforms(const Program& program, const shading::HairParams& hair, const shading::LightingConfig& config);
 
 // The lights as the std430 array `GpuLight lights[]` of shaders/gl/srbf_lights.glsl ((unit ω, λ), (L, 0) each);

@@ -130,23 +130,23 @@ double ShadowPass::run(const ShellGpu& gpu, float kappa, bool own_cluster) const
 
 void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const ShellSettings& s) const {
     tables_.bind(prog, 2);
-    set_lighting_uniforms(prog, s.hair, s.config);
+    set_lighting_uniforms(prog, s.hair.fibre, s.hair.config);
     glUniform1i(prog.uniform("u_light_count"), gpu.light_count);
-    glUniform1i(prog.uniform("u_lobes"), s.lobes);
-    glUniform1i(prog.uniform("u_multiple"), s.multiple ? 1 : 0);
+    glUniform1i(prog.uniform("u_lobes"), s.hair.lobes);
+    glUniform1i(prog.uniform("u_multiple"), s.hair.multiple ? 1 : 0);
     glUniform1i(prog.uniform("u_shadows"), s.shadows && gpu.light_count > 0 ? 1 : 0);
     glUniform1i(prog.uniform("u_absorption_on"), gpu.absorption_on ? 1 : 0);
     if (gpu.absorption_on) {
         glBindTextureUnit(2 + shading::kLutCount, gpu.absorption.id());
         glUniform1i(prog.uniform("u_absorption"), 2 + shading::kLutCount);
     }
-    glUniform1f(prog.uniform("u_d_f"), s.d_f);
+    glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
 }
 
 void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera) {
-    tables_.update(s.hair, s.config);  // validates; rebuilds only on a change
+    tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     program_.use();
     bind_inputs(program_, gpu, s);
     glUniform1i(program_.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));

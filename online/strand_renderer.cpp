@@ -76,8 +76,8 @@ float StrandRenderer::fiber_radius(const StrandSettings& s) const {
 
 void StrandRenderer::draw(const Camera& camera, const StrandSettings& s) {
     const float radius = fiber_radius(s);
-    if (s.lobes < 0 || s.lobes > 7) throw Error::parameter("lobes", "must be a bit set of R (1), TT (2), TRT (4)");
-    tables_.update(s.hair, s.config);
+    shading::validate(s.hair, "strand renderer settings");
+    tables_.update(s.hair.fibre, s.hair.config);
     glViewport(0, 0, camera.width, camera.height);
     if (s.alpha) glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     else glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
@@ -147,9 +147,9 @@ void StrandRenderer::draw(const Camera& camera, const StrandSettings& s) {
 void StrandRenderer::set_shading_uniforms(const Program& program, const Camera& camera, const StrandSettings& s) {
     glUniform3fv(program.uniform("u_eye"), 1, &camera.eye.x);
     glUniform1i(program.uniform("u_light_count"), light_count_);
-    glUniform1i(program.uniform("u_lobes"), s.lobes);
-    glUniform1i(program.uniform("u_multiple"), s.multiple ? 1 : 0);
-    set_lighting_uniforms(program, s.hair, s.config);
+    glUniform1i(program.uniform("u_lobes"), s.hair.lobes);
+    glUniform1i(program.uniform("u_multiple"), s.hair.multiple ? 1 : 0);
+    set_lighting_uniforms(program, s.hair.fibre, s.hair.config);
     tables_.bind(program, kFirstLutUnit);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights_.id());  // shaders/gl/srbf_lights.glsl
 }

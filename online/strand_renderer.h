@@ -33,18 +33,15 @@
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "models/strands.h"
-#include "offline/srbf_lights.h"
 #include "online/gl.h"
 #include "online/lighting_uniforms.h"
-#include "shaders/lighting.h"
+#include "shaders/hair_parameters.h"
+#include "shaders/srbf_light.h"
 
 namespace coif::gl {
 
 struct StrandSettings {
-    shading::HairParams hair = shading::default_hair_params();
-    shading::LightingConfig config = shading::default_config(4);
-    int lobes = 7;                 // bit 0 R, bit 1 TT, bit 2 TRT
-    bool multiple = true;          // the unoccluded fibre's multiple scattering d_b 𝓜^L (off: single scattering only)
+    shading::HairParameters hair;  // multiple: the unoccluded fibre's d_b 𝓜^L (off: single scattering only); d_f unused (no shadows)
     float fiber_radius = 0.0f;     // world units; 0: the reference's auto radius (models/strands.h auto_fiber_radius)
     glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair (the reference's default)
     int samples = 4;               // MSAA samples of the offscreen target

@@ -5,6 +5,7 @@
 
 #include "models/core/error.h"
 #include "models/core/units.h"
+#include "shaders/hair_parameters.h"
 
 namespace coif::shading {
 
@@ -35,16 +36,20 @@ HairParams linked_hair_params(float eta, glm::vec3 sigma_a, float alpha_R, float
     p.eta = eta;
     p.sigma_a = sigma_a;
     p.alpha_R = alpha_R;
-    p.alpha_TT = -0.5f * alpha_R;
-    p.alpha_TRT = -1.5f * alpha_R;
     p.beta_R = beta_R;
-    p.beta_TT = 0.5f * beta_R;
-    p.beta_TRT = 2.0f * beta_R;
+    link_lobes_to_R(p);
     p.ecc_a = ecc_a;
     p.w_c = w_c;
     p.delta_eta_p = 0.3f;
     p.d_b = glsl::MS_DEFAULT_D_B;
     return p;
+}
+
+void link_lobes_to_R(HairParams& p) {
+    p.alpha_TT = -0.5f * p.alpha_R;
+    p.alpha_TRT = -1.5f * p.alpha_R;
+    p.beta_TT = 0.5f * p.beta_R;
+    p.beta_TRT = 2.0f * p.beta_R;
 }
 
 void validate(const HairParams& p, const std::string& place) {
@@ -144,7 +149,7 @@ glm::vec3 LightingEvaluator::ms_global(float theta_o, float phi_o, float theta_j
     LutBinding b(lut_set_);
     const float lambda_f = glsl::ms_lambda_f(lambda_j, sigma_f2);
     glm::vec3 r(0.0f);
-    for (int lobe = 0; lobe < 3; ++lobe)
+    for (int lobe = 0; lobe < kLobeCount; ++lobe)
         r += glsl::srbf_ms_global_lobe(lobe, params_, config_, f0123_, f45_, theta_o, phi_o, theta_j, phi_j, lambda_f);
     return r;
 }
@@ -171,11 +176,11 @@ PointLighting LightingEvaluator::shade(const FibreFrame& frame, glm::vec3 view, 
         const SrbfLight& light = lights[j];
         const LightShadow shadow = shadows.empty() ? LightShadow{} : shadows[j];
         float theta_j, phi_j;
-        glsl::hair_angles(glm::normalize(light.direction), frame.u, frame.v, frame.w, theta_j, phi_j);
-        out.single += light.radiance * shadow.direct *
+        glsl::hair_angles(glm::normalize(light.omega), frame.u, frame.v, frame.w, theta_j, phi_j);
+        out.single += light.L * shadow.direct *
                       glsl::srbf_single(params_, config_, f0123_, f45_, theta_o, phi_o, theta_j, phi_j, light.lambda);
         if (multiple)
-            out.multiple += light.radiance * glsl::srbf_shadowed_multiple(params_, config_, f0123_, f45_, d_f, theta_o,
+            out.multiple += light.L * glsl::srbf_shadowed_multiple(params_, config_, f0123_, f45_, d_f, theta_o,
                                                                           phi_o, theta_j, phi_j, light.lambda,
                                                                           shadow.direct, shadow.fibres);
     }

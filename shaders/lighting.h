@@ -14,6 +14,7 @@
 
 #include "shaders/glsl_prelude.h"
 #include "shaders/lighting_tables.h"
+#include "shaders/srbf_light.h"
 
 namespace coif::glsl {
 #include "shaders/lighting/srbf_shadowed.glsl"
@@ -41,6 +42,8 @@ HairParams default_hair_params();
 
 // 000 §6: α_TT = -α_R/2, α_TRT = -3α_R/2, β_TT = β_R/2, β_TRT = 2β_R (radians).
 HairParams linked_hair_params(float eta, glm::vec3 sigma_a, float alpha_R, float beta_R, float ecc_a, float w_c);
+// The same links in place: TT and TRT follow p's α_R and β_R.
+void link_lobes_to_R(HairParams& p);
 
 // Throws coif::Error (place = `place`, e.g. "option --eta") naming the first bad field and the range.
 void validate(const HairParams& params, const std::string& place = "hair parameters");
@@ -51,12 +54,6 @@ void validate_light(float lambda_j, glm::vec3 direction, const std::string& plac
 LightingConfig default_config(int segments = 4);
 // The paper as written: Schlick, √πλ, g^c_j(θi) ≈ g_j(θi).
 LightingConfig paper_config(int segments = 4);
-
-struct SrbfLight {
-    glm::vec3 direction{0.0f, 1.0f, 0.0f};  // world, towards the light (normalised on use)
-    float lambda = 0.5f;                     // bandwidth λj (rad)
-    glm::vec3 radiance{1.0f};                // L_j
-};
 
 // Per-light visibility from the renderer's shadow pass (defaults: unshadowed). T_f and σ̄_f² follow
 // from `fibres` (shaders/lighting/srbf_shadowed.glsl).
@@ -88,7 +85,8 @@ public:
     const MultipleScatteringTables& ms_tables() const { return ms_; }
 
     // All lights, all lobes, single + multiple scattering, at one shading point. `view` points from
-    // the point towards the eye. `shadows` is empty (all unshadowed) or one entry per light.
+    // the point towards the eye. `shadows` is empty (all unshadowed) or one entry per light. A light's
+    // ω is normalised on use.
     PointLighting shade(const FibreFrame& frame, glm::vec3 view, std::span<const SrbfLight> lights,
                         std::span<const LightShadow> shadows = {}, bool multiple = true,
                         float d_f = glsl::MS_DEFAULT_D_F) const;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "models/core/units.h"
+#include "shaders/hair_parameters.h"
 
 namespace coif::shading::reference {
 
@@ -246,7 +247,7 @@ glm::dvec3 single_lobe(int lobe, const HairParams& p, double theta_o, double phi
 
 glm::dvec3 single(const HairParams& p, double theta_o, double phi_o, double theta_j, double phi_j, double lambda_j) {
     glm::dvec3 r(0.0);
-    for (int lobe = 0; lobe < 3; ++lobe) r += single_lobe(lobe, p, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    for (int lobe = 0; lobe < kLobeCount; ++lobe) r += single_lobe(lobe, p, theta_o, phi_o, theta_j, phi_j, lambda_j);
     return r;
 }
 
@@ -297,7 +298,7 @@ ZinkeTable zinke_table(const HairParams& p, int points) {
         const double x = -0.5 * kPi + kPi * double(k) / double(n - 1);
         t.theta_d[k] = x;
         glm::dvec3 af(0.0), ab(0.0), alf(0.0), alb(0.0), bf(0.0), bb(0.0);
-        for (int lobe = 0; lobe < 3; ++lobe) {
+        for (int lobe = 0; lobe < kLobeCount; ++lobe) {
             const double alpha = glsl::lobe_alpha(p, lobe), beta = glsl::lobe_beta(p, lobe);
             // (1/π) ∫ M_t((x+θo)/2) cos θo cos x / cos²((x-θo)/2) m(θd = (x-θo)/2) dθo (000 eq. 33, unseparated)
             const double mu = 2.0 * alpha - x, l = 2.0 * beta;
@@ -348,7 +349,7 @@ glm::dvec3 ms_global(const HairParams& p, double theta_o, double phi_o, double t
     const double lambda_f = std::sqrt(lambda_j * lambda_j + 2.0 * std::max(sigma_f2, 0.0));
     const double dphi = wrap(phi_o - phi_j);
     glm::dvec3 total(0.0);
-    for (int lobe = 0; lobe < 3; ++lobe) {
+    for (int lobe = 0; lobe < kLobeCount; ++lobe) {
         const double alpha = glsl::lobe_alpha(p, lobe), beta = glsl::lobe_beta(p, lobe);
         const double mu2 = 2.0 * alpha - theta_o, l2 = 2.0 * beta;
         const double lo = std::max({-0.5 * kPi, mu2 - 7.0 * l2, theta_j - 7.0 * lambda_f});

@@ -15,6 +15,7 @@
 #include "models/core/units.h"
 #include "online/benchmarks.h"
 #include "online/gl_context.h"
+#include "online/lighting_uniforms.h"
 #include "shaders/lighting_check.h"
 #include "tools/cli.h"
 

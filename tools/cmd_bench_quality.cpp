@@ -22,6 +22,7 @@
 #include "models/core/image_metrics.h"
 #include "offline/srbf_fit.h"
 #include "offline/srbf_lights.h"
+#include "online/shells/shell_settings.h"
 #include "tools/assets.h"
 #include "tools/cli.h"
 #include "tools/reference_options.h"
@@ -244,19 +245,6 @@ BenchLighting bench_lighting(const coif::cli::ReferenceCliOptions& ref, const fs
     return b;
 }
 
-// A coif render --params file with the reference's hair parameters (000's links, as the reference's options).
-void write_render_params(const fs::path& path, const coif::shading::HairParams& p, bool multiple) {
-    constexpr double kDeg = 57.29577951308232;
-    const nlohmann::json j = {{"eta", p.eta},
-                              {"sigma_a", {p.sigma_a.x, p.sigma_a.y, p.sigma_a.z}},
-                              {"alpha_R_deg", p.alpha_R * kDeg},
-                              {"beta_R_deg", p.beta_R * kDeg},
-                              {"ecc_a", p.ecc_a},
-                              {"w_c_deg", p.w_c * kDeg},
-                              {"multiple", multiple}};
-    write_text(path, j.dump(2));
-}
-
 void add_bench_quality(CLI::App& root) {
     CLI::App* bench = coif::cli::noun(root, "bench", "Benchmarks that print figures (JSON with --json, else a table)");
     auto o = std::make_shared<QualityOptions>();
@@ -295,7 +283,7 @@ void add_bench_quality(CLI::App& root) {
                              "  coif bench quality --no-fit --json > quality.json");
     cmd->callback([o] {
         // Validate the shared options up front (clear errors before minutes of rendering).
-        const coif::shading::HairParams hair = o->reference.hair_params();
+        const coif::gl::ShellSettings params = o->reference.hair.settings();
         (void)o->reference.environment();
         const coif::ReferenceSettings settings = o->reference.reference_settings();
 
@@ -321,8 +309,12 @@ void add_bench_quality(CLI::App& root) {
 
         const BenchLighting lighting = bench_lighting(o->reference, dir);
         const fs::path params_full = dir / "params.json", params_single = dir / "params_single_scattering.json";
-        write_render_params(params_full, hair, true);
-        write_render_params(params_single, hair, false);
+        // One parameters file for both commands (the reference reads its fibre keys); the lighting-only rows
+        // render without multiple scattering.
+        coif::gl::ShellSettings single_scattering = params;
+        single_scattering.hair.multiple = false;
+        coif::gl::write_shell_settings(params_full, params);
+        coif::gl::write_shell_settings(params_single, single_scattering);
 
         std::vector<Scene> scenes{{"default (SATF shells)", "", Renderer::shells, "", false}};
         if (fs::is_directory(o->data)) {
@@ -360,7 +352,7 @@ void add_bench_quality(CLI::App& root) {
         char camera_args[256];
         std::snprintf(camera_args, sizeof camera_args, " --width %d --height %d --azimuth %.9g --elevation %.9g --fov %.9g", o->width,
                       o->height, o->azimuth_deg, o->elevation_deg, o->fov_deg);
-        const std::string hair_args = o->reference.hair_args();
+        const std::string params_arg = " --params " + quote(params_full.string());
         std::ostringstream radius_arg;
         if (settings.fiber_radius > 0) radius_arg << " --radius " << settings.fiber_radius;
 
@@ -376,7 +368,7 @@ void add_bench_quality(CLI::App& root) {
 
             // The reference (once per distinct set of arguments).
             std::ostringstream ref_args;
-            ref_args << strands_arg << camera_args << (sc.lighting_only ? lighting.single_reference : lighting.reference) << hair_args
+            ref_args << strands_arg << camera_args << (sc.lighting_only ? lighting.single_reference : lighting.reference) << params_arg
                      << " --spp " << (sc.lighting_only ? o->lighting_spp : settings.samples_per_pixel)
                      << " --max-depth " << (sc.lighting_only ? 1 : settings.max_depth)
                      << " --threads " << settings.threads << radius_arg.str() << (sc.reference_shadows ? "" : " --no-shadows")

@@ -116,7 +116,7 @@ void add_bench_render(CLI::App& root) {
         nlohmann::ordered_json j = {
             {"renderer", scene.context->renderer()}, {"width", o->scene.width}, {"height", o->scene.height},
             {"samples", settings.samples}, {"lights", scene.lights.size()}, {"lights_source", scene.lights_label},
-            {"multiple_scattering", settings.multiple}, {"shadows_between_clusters", settings.shadows},
+            {"multiple_scattering", settings.hair.multiple}, {"shadows_between_clusters", settings.shadows},
             {"neighbours", settings.neighbours}, {"records", scene.db.size()}, {"frames", o->frames}, {"scenes", rows}};
         if (o->json) {
             std::printf("%s\n", j.dump(2).c_str());
@@ -124,7 +124,7 @@ void add_bench_render(CLI::App& root) {
         }
         std::printf("renderer  %s; %dx%d, %d sample(s), %zu lights (%s), %s, shadows between clusters %s; median of %d frames\n",
                     scene.context->renderer().c_str(), o->scene.width, o->scene.height, settings.samples,
-                    scene.lights.size(), scene.lights_label.c_str(), settings.multiple ? "single + multiple scattering" : "single scattering",
+                    scene.lights.size(), scene.lights_label.c_str(), settings.hair.multiple ? "single + multiple scattering" : "single scattering",
                     settings.shadows ? "on" : "off", o->frames);
         std::printf("Wall-clock per pass, each waited for on the GPU. Per hairstyle, once: SATF parameters and look-up\n"
                     "(prepare); per light change: the shadow pass; per frame: the lighting pass, and the shells (re/α\n"

@@ -12,6 +12,7 @@
 #include "shaders/lighting_check.h"
 #include "shaders/lighting_plot.h"
 #include "tools/cli.h"
+#include "tools/hair_options.h"
 
 namespace {
 
@@ -126,10 +127,11 @@ void add_lighting(CLI::App& root) {
 
     struct PlotOptions {
         std::string out;
-        float eta = 1.55f, alpha_R = -7.5f, beta_R = 7.5f, ecc = 1.0f, w_c = 0.15f;
-        std::vector<float> sigma_a{0.2f, 0.2f, 0.2f};
+        coif::cli::HairCliOptions hair;
+        coif::gl::ShellSettings base;  // 000's brown hair, but grey σa = 0.2 (000 Fig. 3)
     };
     auto po = std::make_shared<PlotOptions>();
+    po->base.hair.fibre.sigma_a = glm::vec3(0.2f);
     CLI::App* plot = lighting->add_subcommand(
         "plot",
         "Write PNG plots of exact vs approximate terms, as 000 Fig. 3: N_TT (one circular Gaussian) and N_TRT\n"
@@ -138,19 +140,10 @@ void add_lighting(CLI::App& root) {
         "N_t cos^2(theta_i)/cos^2(theta_d) for lambda' = 0.5. Exact curves solid, approximations dashed; each PNG\n"
         "has a CSV of its data and README.txt lists colours and axes. Bad parameter values are refused (exit 1).");
     plot->add_option("-o,--out", po->out, "Output folder (created if missing)")->required();
-    plot->add_option("--eta", po->eta, "Index of refraction (default 1.55; must exceed 1)");
-    plot->add_option("--sigma-a", po->sigma_a, "Absorption per unit fibre radius, r g b (default 0.2 0.2 0.2; >= 0)")
-        ->expected(3);
-    plot->add_option("--alpha-r", po->alpha_R, "Longitudinal shift alpha_R in degrees (default -7.5; TT, TRT linked)");
-    plot->add_option("--beta-r", po->beta_R, "Longitudinal width beta_R in degrees (default 7.5; TT, TRT linked; > 0)");
-    plot->add_option("--ecc", po->ecc, "Eccentricity a (default 1 = circular; in (0.707, 1.414))");
-    plot->add_option("--wc", po->w_c, "TRT caustic width w_c in radians (default 0.15; > 0)");
+    po->hair.add_to(plot, po->base.hair);
     coif::cli::examples(plot, "  coif lighting plot -o lighting_plots/\n  coif lighting plot -o dark/ --sigma-a 1.2 1.6 2.4 --eta 1.6");
     plot->callback([po] {
-        const HairParams params = linked_hair_params(po->eta, glm::vec3(po->sigma_a[0], po->sigma_a[1], po->sigma_a[2]),
-                                                     float(coif::radians(po->alpha_R)),
-                                                     float(coif::radians(po->beta_R)), po->ecc, po->w_c);
-        validate(params, "coif lighting plot options");
+        const HairParams params = po->hair.settings(po->base).hair.fibre;  // validated
         const fs::path dir(po->out);
         std::error_code ec;
         fs::create_directories(dir, ec);

@@ -60,9 +60,8 @@ void add_render(CLI::App& root) {
                        "Environment: SRBF lights JSON (coif env fit) or an equirectangular .exr/.hdr map (fitted with "
                        "40 lights); default: the embedded courtyard lights");
     render->add_option("--params", o->params,
-                       "Scattering parameters JSON (keys: eta, sigma_a, alpha_R_deg, beta_R_deg, …, kappa_shadow, lobes, "
-                       "multiple, neighbours; see online/shell_renderer.h); default: 000's brown hair. The strand lines read\n"
-                       "the hair parameters, segments, lobes and multiple only");
+                       "Parameters file: a JSON object of the keys listed below, each optional; default: 000's brown hair "
+                       "and the renderer's defaults. The strand lines read the hair keys only");
     render->add_option("--absorption", o->absorption,
                        "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
                        "--params' sigma_a");
@@ -77,8 +76,10 @@ void add_render(CLI::App& root) {
                        "(clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
         ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
+    std::string lobe_aovs;
+    for (const coif::shading::Lobe& lobe : coif::shading::kLobes) lobe_aovs += std::string("OUT.") + lobe.name + ", ";
     render->add_flag("--aovs", o->aovs,
-                     "Also write the separate images OUT.R, OUT.TT, OUT.TRT, OUT.multiple (each scattering term alone, over "
+                     "Also write the separate images " + lobe_aovs + "OUT.multiple (each scattering term alone, over "
                      "black: they add up to the image over black) and OUT.shadow (the unoccluded fraction of the light "
                      "times the within-cluster shadow, as coverage-weighted grey)");
     render->add_option("--radius", o->radius,
@@ -98,6 +99,11 @@ void add_render(CLI::App& root) {
                                 "  coif render --absorption dyed.exr -o dyed.png   # from coif style paint-absorption\n"
                                 "  coif render --aovs -o hair.exr   # also hair.R.exr, hair.TT.exr, hair.TRT.exr, hair.multiple.exr, hair.shadow.exr\n"
                                 "  coif render --strands ../shared/data/harolongo.data --env lights.json -o lines.png");
+    render->footer(render->get_footer() +
+                   "\n\nParameters file (--params; also read by coif reference --params, which uses the fibre's keys):\n"
+                   "a JSON object, every key optional; degrees for angles. alpha_R_deg / beta_R_deg alone keep 000's\n"
+                   "links for TT and TRT; a TT/TRT key overrides its link. Keys, what they set and what they accept:\n" +
+                   coif::params_help(coif::gl::shell_settings_table()));
     render->callback([o] {
         {  // refuse a bad output name before any work (the default database may take minutes to build)
             std::string ext = std::filesystem::path(o->output).extension().string();
@@ -115,11 +121,7 @@ void add_render(CLI::App& root) {
             settings.per_fragment = o->per_fragment;
             settings.alpha = o->alpha;
             if (!o->params.empty()) {
-                const coif::gl::ShellSettings p = coif::gl::read_shell_settings(o->params);
-                settings.hair = p.hair;
-                settings.config = p.config;
-                settings.lobes = p.lobes;
-                settings.multiple = p.multiple;
+                settings.hair = coif::gl::read_shell_settings(o->params).hair;
             }
             std::string lights_label, label;
             const std::vector<coif::SrbfLight> lights = coif::cli::load_render_lights(o->env, &lights_label);
@@ -199,24 +201,27 @@ void add_render(CLI::App& root) {
         if (o->aovs) {  // after the figures above, which are the image's own
             const std::filesystem::path out(o->output);
             struct Aov {
-                const char* name;
+                std::string name;
                 int lobes;
                 bool multiple;
                 int debug;
             };
-            for (const Aov& a : {Aov{"R", 1, false, 0}, Aov{"TT", 2, false, 0}, Aov{"TRT", 4, false, 0},
-                                 Aov{"multiple", 0, true, 0}, Aov{"shadow", 7, settings.multiple, 4}}) {
+            std::vector<Aov> aovs;  // each lobe alone, the multiple scattering alone, the shadow
+            for (const coif::shading::Lobe& lobe : coif::shading::kLobes) aovs.push_back({lobe.name, lobe.bit, false, 0});
+            aovs.push_back({"multiple", 0, true, 0});
+            aovs.push_back({"shadow", coif::shading::kAllLobes, settings.hair.multiple, 4});
+            for (const Aov& a : aovs) {
                 coif::gl::ShellSettings aov = settings;
                 aov.background = glm::vec3(0.0f);
-                aov.lobes = a.lobes;
-                aov.multiple = a.multiple;
+                aov.hair.lobes = a.lobes;
+                aov.hair.multiple = a.multiple;
                 aov.debug = a.debug;
                 const std::filesystem::path path =
                     out.parent_path() / (out.stem().string() + "." + a.name + out.extension().string());
                 coif::WriteOptions aw = wo;
                 aw.description = wo.description + "; AOV " + a.name;
                 coif::write_image(path, renderer.render(camera, aov), aw);
-                std::fprintf(stderr, "AOV %-8s -> %s\n", a.name, path.c_str());
+                std::fprintf(stderr, "AOV %-8s -> %s\n", a.name.c_str(), path.c_str());
             }
         }
     });

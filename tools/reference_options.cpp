@@ -18,10 +18,6 @@ glm::vec3 rgb(const std::vector<float>& v, const std::string& option) {
     return c;
 }
 
-void finite(const std::optional<float>& v, const std::string& option) {
-    if (v && !std::isfinite(*v)) throw Error::parameter("option " + option, "must be a finite number");
-}
-
 std::string quote(const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -34,12 +30,7 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
     app->add_option("--env", env, "Equirectangular environment map (.exr, .hdr) lighting the hair, importance-sampled from its pixels");
     app->add_option("--lights", lights, "SRBF lights file (from `coif env fit`) lighting the hair instead of a map: Σ L_j G_j(ω)");
     app->add_option("--env-constant", env_constant, "Constant environment radiance R G B (the default lighting is 1 1 1)")->expected(3);
-    app->add_option("--eta", eta, "Index of refraction η of the fibre (default 1.55)");
-    app->add_option("--sigma-a", sigma_a, "Absorption σa per unit fibre RADIUS, R G B (default: brown, 0.432 0.612 0.98)")->expected(3);
-    app->add_option("--alpha-r", alpha_r_deg, "Longitudinal shift α_R in degrees (α_TT = -α_R/2, α_TRT = -3α_R/2; default -7.5)");
-    app->add_option("--beta-r", beta_r_deg, "Longitudinal width β_R in degrees, 000's bandwidth (β_TT = β_R/2, β_TRT = 2β_R; default 7.5)");
-    app->add_option("--ecc", ecc_a, "Eccentricity a of the fibre cross-section (1 = round; 0.7072..1.4142; default 1)");
-    app->add_option("--wc", w_c_deg, "Azimuthal width w_c of the TRT glints in degrees (default 8.6 = 0.15 rad)");
+    hair.add_to(app);
     app->add_option("--spp", settings.samples_per_pixel, "Samples (camera paths) per pixel")->check(CLI::Range(1, kMaxReferenceSpp));
     app->add_option("--max-depth", settings.max_depth,
                     "Most scattering events per path: 1 = single scattering with ray-traced shadows; more = multiple "
@@ -57,20 +48,7 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
     app->add_flag("--alpha", settings.alpha, "Write straight-alpha RGBA: A = fibre coverage, RGB = hair colour alone (no background)");
 }
 
-shading::HairParams ReferenceCliOptions::hair_params() const {
-    finite(eta, "--eta");
-    finite(alpha_r_deg, "--alpha-r");
-    finite(beta_r_deg, "--beta-r");
-    finite(ecc_a, "--ecc");
-    finite(w_c_deg, "--wc");
-    const shading::HairParams d = shading::default_hair_params();
-    const glm::vec3 sa = sigma_a.empty() ? d.sigma_a : rgb(sigma_a, "--sigma-a");
-    shading::HairParams p = shading::linked_hair_params(
-        eta.value_or(d.eta), sa, alpha_r_deg ? float(radians(*alpha_r_deg)) : d.alpha_R,
-        beta_r_deg ? float(radians(*beta_r_deg)) : d.beta_R, ecc_a.value_or(d.ecc_a), w_c_deg ? float(radians(*w_c_deg)) : d.w_c);
-    shading::validate(p, "hair parameters (--eta, --sigma-a, --alpha-r, --beta-r, --ecc, --wc)");
-    return p;
-}
+shading::HairParams ReferenceCliOptions::hair_params() const { return hair.settings().hair.fibre; }
 
 ReferenceEnvironment ReferenceCliOptions::environment() const {
     const int given = int(!env.empty()) + int(!lights.empty()) + int(!env_constant.empty());
@@ -93,18 +71,6 @@ std::string ReferenceCliOptions::lighting_args() const {
     if (!env.empty()) o << " --env " << quote(env);
     if (!lights.empty()) o << " --lights " << quote(lights);
     if (env_constant.size() == 3) o << " --env-constant " << env_constant[0] << ' ' << env_constant[1] << ' ' << env_constant[2];
-    return o.str();
-}
-
-std::string ReferenceCliOptions::hair_args() const {
-    std::ostringstream o;
-    o.precision(9);
-    if (eta) o << " --eta " << *eta;
-    if (sigma_a.size() == 3) o << " --sigma-a " << sigma_a[0] << ' ' << sigma_a[1] << ' ' << sigma_a[2];
-    if (alpha_r_deg) o << " --alpha-r " << *alpha_r_deg;
-    if (beta_r_deg) o << " --beta-r " << *beta_r_deg;
-    if (ecc_a) o << " --ecc " << *ecc_a;
-    if (w_c_deg) o << " --wc " << *w_c_deg;
     return o.str();
 }
 

@@ -9,6 +9,7 @@
 #include "offline/reference.h"
 #include "shaders/lighting.h"
 #include "tools/cli.h"
+#include "tools/hair_options.h"
 
 namespace coif::cli {
 
@@ -17,21 +18,19 @@ struct ReferenceCliOptions {
     std::string env;                 // equirectangular .exr/.hdr map
     std::string lights;              // SRBF lights JSON (coif env fit)
     std::vector<float> env_constant; // R G B
-    // Hair (shading::default_hair_params unless given).
-    std::optional<float> eta, alpha_r_deg, beta_r_deg, ecc_a, w_c_deg;
-    std::vector<float> sigma_a;      // R G B, per unit fibre radius
+    // Hair: --params FILE and the shorthand flags (shading::default_hair_params unless given).
+    HairCliOptions hair;
     // Path tracing.
     ReferenceSettings settings;
     std::vector<float> background;   // R G B
     bool background_env = false;
 
     void add_to(CLI::App* app);
-    shading::HairParams hair_params() const;  // validated (coif::Error naming the option)
+    shading::HairParams hair_params() const;  // the fibre's parameters; validated (coif::Error naming the file or option)
     ReferenceEnvironment environment() const;
     ReferenceSettings reference_settings() const;
-    // The options as command-line text (for `coif bench quality`, which runs `coif reference`).
+    // The lighting options as command-line text (for `coif bench quality`, which runs `coif reference`).
     std::string lighting_args() const;
-    std::string hair_args() const;
 };
 
 }  // namespace coif::cli

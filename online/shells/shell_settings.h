@@ -1,10 +1,12 @@
 #pragma once
 // The shell renderer's settings (online/shell_renderer.h): the hair's scattering parameters, how the shells
-// are shaded and composited, and the parameters file that `coif render --params` reads. GL-free.
+// are shaded and composited, and the parameters file that `coif render --params` (and `coif reference
+// --params`, `coif bench *`) read. GL-free.
 #include <glm/glm.hpp>
 #include <string>
 
-#include "shaders/lighting.h"
+#include "models/core/param_table.h"
+#include "shaders/hair_parameters.h"
 
 namespace coif::gl {
 
@@ -17,14 +19,10 @@ const char* compositing_name(Compositing c);
 Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place);
 
 struct ShellSettings {
-    shading::HairParams hair = shading::default_hair_params();
-    shading::LightingConfig config = shading::default_config(4);
-    int lobes = 7;                  // bit 0 R, bit 1 TT, bit 2 TRT
-    bool multiple = true;           // dual-scattering multiple scattering (shaders/lighting/srbf_shadowed.glsl)
+    shading::HairParameters hair;   // the scattering parameters (shaders/hair_parameters.h)
     bool shadows = true;            // shadows between clusters (T̃, n per lighting sample and light)
     bool own_cluster_shadow = true; // shadow rays start on the cluster's axis, through its own fibres (false: outside it)
     float kappa_between = -1.0f;    // κ of the shadow pass (opacity per unit density per λ of path); < 0: the database's
-    float d_f = 0.7f;               // Zinke's forward-scattering density factor d_f
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
@@ -42,15 +40,18 @@ struct ShellSettings {
 // 1..4, for the exact compositing (the blended modes use MSAA: 1).
 int supersampling(const ShellSettings& settings);
 
-// Reads a parameters file (JSON object; every key optional; degrees for angles):
-//   {"eta", "sigma_a": [r,g,b], "alpha_R_deg", "beta_R_deg", "alpha_TT_deg", "alpha_TRT_deg",
-//    "beta_TT_deg", "beta_TRT_deg", "ecc_a", "w_c_deg", "delta_eta_p", "d_b", "kappa_shadow",
-//    "segments", "lobes": {"R": true, "TT": true, "TRT": true}, "multiple": true, "neighbours",
-//    "debug": 0..4 (ShellSettings::debug), "compositing": "exact" | "sorted" | "unsorted", "shadows": true,
-//    "own_cluster_shadow": true, "kappa_between", "d_f", "lighting_per_fragment": false,
-//    "fourier_order": 1..4}
-// α_R / β_R alone keep 000's links for TT and TRT; a TT/TRT key overrides its link. Validated:
-// throws coif::Error naming the file and the key.
+// The parameters file: one JSON object, every key optional, read through shell_settings_table(): the hair's
+// keys (shading::hair_parameter_table(), shaders/hair_parameters.h: eta, sigma_a, alpha_R_deg, …; degrees
+// for angles), then the renderer's (kappa_shadow, neighbours, compositing, …). `coif render --help` lists
+// every key with its meaning and range (params_help). Unknown keys, wrong types and out-of-range values
+// throw coif::Error naming the file and the JSON path ("JSON /neighbours"); the hair is then validated as a
+// whole (shading::validate). background, samples and timed are not in the file.
+const ParamTable<ShellSettings>& shell_settings_table();  // the hair keys (lifted), then the renderer's
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
+// The file of `settings` (every key of the table; kappa_between only when set, TT/TRT angles only where
+// they differ from their links): read_shell_settings of it gives `settings` back, bar background, samples
+// and timed. write_shell_settings writes it atomically.
+nlohmann::ordered_json shell_settings_json(const ShellSettings& settings);
+void write_shell_settings(const std::string& path, const ShellSettings& settings);
 
 }  // namespace coif::gl

@@ -26,13 +26,13 @@ const float MS_DEFAULT_D_F = 0.7;  // Zinke et al. 2008: density factor of forwa
 // value. Deep inside hair most pairs fall below it (the default style: mean T̃ 0.12, n ≈ 60).
 const float MS_NEGLIGIBLE = 1e-4;
 
-// Σ of the enabled single-scattering lobes (bit 0 R, bit 1 TT, bit 2 TRT) of one light.
+// Σ of the enabled single-scattering lobes (bit 1 << LOBE_t for each lobe t; shading::kLobes) of one light.
 COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, int lobes, float theta_o,
                                float phi_o, float theta_j, float phi_j, float lambda_j) {
     vec3 m = vec3(0.0);
-    if ((lobes & 1) != 0) m += srbf_single_lobe(LOBE_R, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
-    if ((lobes & 2) != 0) m += srbf_single_lobe(LOBE_TT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
-    if ((lobes & 4) != 0) m += srbf_single_lobe(LOBE_TRT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if ((lobes & (1 << LOBE_R)) != 0) m += srbf_single_lobe(LOBE_R, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if ((lobes & (1 << LOBE_TT)) != 0) m += srbf_single_lobe(LOBE_TT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if ((lobes & (1 << LOBE_TRT)) != 0) m += srbf_single_lobe(LOBE_TRT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j);
     return m;
 }
 

@@ -128,25 +128,6 @@ TEST(ShellCompositing, OverflowingStorageIsCountedAndTheNextFrameIsComplete) {
     (void)first;
 }
 
-TEST(ShellCompositing, ParametersFileSelectsTheMode) {
-    const auto dir = test::scratch_dir("shell-compositing-params");
-    const auto write = [&](const char* name, const char* text) {
-        std::ofstream(dir / name) << text;
-        return (dir / name).string();
-    };
-    EXPECT_EQ(gl::read_shell_settings(write("a.json", R"({"compositing": "unsorted"})")).compositing, gl::Compositing::unsorted);
-    EXPECT_EQ(gl::read_shell_settings(write("b.json", R"({"compositing": "sorted"})")).compositing, gl::Compositing::sorted);
-    EXPECT_EQ(gl::read_shell_settings(write("c.json", R"({"compositing": "exact"})")).compositing, gl::Compositing::exact);
-    try {
-        gl::read_shell_settings(write("d.json", R"({"compositing": "peeled"})"));
-        FAIL() << "unknown compositing mode accepted";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("JSON /compositing"), std::string::npos) << e.what();
-    }
-    EXPECT_THROW(gl::read_shell_settings(write("e.json", R"({"compositing": true})")), Error);
-    std::filesystem::remove_all(dir);
-}
-
 TEST(ShellCompositing, ExactModeSupersamplesWhenAskedForSamples) {
     // The exact compositing antialiases by supersampling (ShellRenderer::render): 4 samples = 4 frames shifted
     // to the pixel centres of a 2× finer grid, averaged = the 2 × 2 box filter of the same view drawn at twice

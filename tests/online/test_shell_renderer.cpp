@@ -13,6 +13,7 @@
 #include "models/style_strands.h"
 #include "online/shells/shadow_grid.h"
 #include "online/shell_renderer.h"
+#include "shaders/hair_parameters.h"
 #include "shaders/lighting.h"
 #include "tests/common/run.h"
 #include "tests/online/shell_test_scene.h"
@@ -43,18 +44,17 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     target.bind();
     for (const bool multiple : {false, true}) {
     gl::ShellSettings settings;
-    settings.multiple = multiple;
+    settings.hair.multiple = multiple;
     settings.shadows = false;  // one cluster; the shadowed case is ShadowsBetweenClusters… below
     renderer.draw(camera, settings);
     const std::vector<float> lit = renderer.read_lighting();
-    const shading::LightingEvaluator ev(settings.hair, settings.config);
-    const shading::SrbfLight cpu_light{light.omega, light.lambda, light.L};
-    double worst = 0;
+    const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
+        double worst = 0;
     for (int r = 0; r < renderer.lighting_rows(); ++r) {
         const std::vector<glm::vec3> s = renderer.lighting_sample(static_cast<std::size_t>(r));
         const shading::FibreFrame frame = shading::FibreFrame::from_tangent(s[1], s[2]);
         const glm::vec3 view = glm::normalize(camera.eye - s[0]);
-        const glm::vec3 want = ev.shade(frame, view, std::span(&cpu_light, 1), {}, multiple).total();
+        const glm::vec3 want = ev.shade(frame, view, std::span(&light, 1), {}, multiple).total();
         const glm::vec3 got(lit[r * 27 + 0], lit[r * 27 + 1], lit[r * 27 + 2]);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(got[c]) - want[c]) / std::max(1e-3, double(want[c])));
         if (r == 0) std::printf("row 0: GPU %g %g %g, CPU %g %g %g\n", got.x, got.y, got.z, want.x, want.y, want.z);
@@ -134,16 +134,15 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     // The lighting pass turns them into the lighting module's shadowed terms: compare with the CPU
     // evaluator fed the same (T̃, n), single and multiple scattering.
     const std::vector<float> lit = renderer.read_lighting();
-    const shading::LightingEvaluator ev(settings.hair, settings.config);
-    const shading::SrbfLight cpu_light{light.omega, light.lambda, light.L};
-    double worst = 0;
+    const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
+        double worst = 0;
     for (std::size_t i = 0; i < sh.size(); ++i) {
         const std::vector<glm::vec3> s = renderer.lighting_sample(i);
         const shading::FibreFrame frame = shading::FibreFrame::from_tangent(s[1], s[2]);
         const shading::LightShadow shadow{std::clamp(sh[i].x, 0.0f, 1.0f), sh[i].y};
         const glm::vec3 want =
-            ev.shade(frame, glm::normalize(camera.eye - s[0]), std::span(&cpu_light, 1), std::span(&shadow, 1), true,
-                     settings.d_f).total();
+            ev.shade(frame, glm::normalize(camera.eye - s[0]), std::span(&light, 1), std::span(&shadow, 1), true,
+                     settings.hair.d_f).total();
         const glm::vec3 got(lit[i * 27 + 0], lit[i * 27 + 1], lit[i * 27 + 2]);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(got[c]) - want[c]) / std::max(1e-3, double(want[c])));
     }
@@ -192,7 +191,7 @@ TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {
     const std::vector<float> plain = renderer.read_lighting();
     // A map holding the settings' σa everywhere gives the same lighting, bit for bit (same values,
     // same code path but for where σa is read from).
-    AbsorptionMap same(2, 3, settings.hair.sigma_a);
+    AbsorptionMap same(2, 3, settings.hair.fibre.sigma_a);
     renderer.set_absorption(&same);
     renderer.draw(camera, settings);
     EXPECT_EQ(renderer.read_lighting(), plain);
@@ -239,10 +238,13 @@ TEST(ShellRenderer, ScatteringAovsAddUpToTheImage) {
     const Image full = renderer.render(camera, s);
     Image sum = full;
     std::fill(sum.pixels.begin(), sum.pixels.end(), 0.0f);
-    for (const auto& [lobes, multiple] : {std::pair{1, false}, {2, false}, {4, false}, {0, true}}) {
+    std::vector<std::pair<int, bool>> parts;  // each lobe alone, then the multiple scattering alone
+    for (const shading::Lobe& lobe : shading::kLobes) parts.emplace_back(lobe.bit, false);
+    parts.emplace_back(0, true);
+    for (const auto& [lobes, multiple] : parts) {
         gl::ShellSettings a = s;
-        a.lobes = lobes;
-        a.multiple = multiple;
+        a.hair.lobes = lobes;
+        a.hair.multiple = multiple;
         const Image part = renderer.render(camera, a);
         for (std::size_t i = 0; i < sum.pixels.size(); ++i)
             if (i % 4 != 3) sum.pixels[i] += part.pixels[i];
@@ -378,7 +380,7 @@ TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
     s.shadows = false;  // one cluster: its own shadow would leave little light for the other changes to move
     const Image base = renderer.render(camera, s);
     gl::ShellSettings red = s;
-    red.hair = shading::linked_hair_params(1.55f, glm::vec3(0.1f, 1.5f, 3.0f), s.hair.alpha_R, s.hair.beta_R, 1.0f, s.hair.w_c);
+    red.hair.fibre.sigma_a = glm::vec3(0.1f, 1.5f, 3.0f);
     const Image changed = renderer.render(camera, red);
     gl::ShellSettings dark = s;
     dark.kappa_shadow = 3.0f;
@@ -421,29 +423,6 @@ TEST(ShellRenderer, DefaultLightsShowLitHair) {
     std::printf("lit pixels %d of %d, mean R %.4f B %.4f\n", lit, img.width * img.height, r / std::max(lit, 1), b / std::max(lit, 1));
     EXPECT_GT(lit, img.width * img.height / 20);
     EXPECT_GT(r, b);
-}
-
-TEST(ShellRenderer, BadParametersFileIsRefusedAtItsKey) {
-    const auto dir = test::scratch_dir("shell-params");
-    const auto write = [&](const char* name, const char* text) {
-        std::ofstream(dir / name) << text;
-        return (dir / name).string();
-    };
-    EXPECT_THROW(gl::read_shell_settings(write("a.json", "{\"eta\": 0.5}")), Error);
-    EXPECT_THROW(gl::read_shell_settings(write("b.json", "{\"sigma_a\": [1, 2]}")), Error);
-    EXPECT_THROW(gl::read_shell_settings(write("c.json", "{\"nonsense\": 1}")), Error);
-    EXPECT_THROW(gl::read_shell_settings(write("d.json", "{\"neighbours\": 9}")), Error);
-    EXPECT_THROW(gl::read_shell_settings(write("e.json", "not json")), Error);
-    try {
-        gl::read_shell_settings(write("f.json", "{\"kappa_shadow\": -1}"));
-        FAIL() << "negative kappa_shadow accepted";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("kappa_shadow"), std::string::npos) << e.what();
-    }
-    const gl::ShellSettings ok = gl::read_shell_settings(write("g.json", "{\"beta_R_deg\": 10, \"lobes\": {\"TT\": false}}"));
-    EXPECT_NEAR(ok.hair.beta_TRT, 2.0f * 10.0f * 0.0174533f, 1e-5f);  // 000's link β_TRT = 2 β_R
-    EXPECT_EQ(ok.lobes, 5);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(ShellRenderer, CoifRenderRefusesBadInputAndWritesNothing) {

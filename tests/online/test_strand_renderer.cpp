@@ -63,8 +63,7 @@ glm::vec3 cpu_radiance(const Scene& sc, const shading::LightingEvaluator& ev, bo
     const glm::vec3 p = fragment_point(sc.camera, sc.a, sc.b, x, y);
     const glm::vec3 u = glm::normalize(sc.b - sc.a);
     const shading::FibreFrame frame = shading::FibreFrame::from_tangent(u, glm::cross(u, glm::vec3(0, 1, 0)));
-    const shading::SrbfLight light{sc.light.omega, sc.light.lambda, sc.light.L};
-    return ev.shade(frame, glm::normalize(sc.camera.eye - p), std::span(&light, 1), {}, multiple).total();
+    return ev.shade(frame, glm::normalize(sc.camera.eye - p), std::span(&sc.light, 1), {}, multiple).total();
 }
 
 TEST(StrandRenderer, PixelsMatchTheCpuEvaluatorUnderOneNarrowLight) {
@@ -77,12 +76,12 @@ TEST(StrandRenderer, PixelsMatchTheCpuEvaluatorUnderOneNarrowLight) {
     for (const bool multiple : {false, true}) {
         gl::StrandSettings settings;
         settings.per_fragment = per_fragment;
-        settings.multiple = multiple;
+        settings.hair.multiple = multiple;
         settings.samples = 1;                 // one fragment per pixel: a hair pixel holds exactly that fragment
         settings.background = glm::vec3(0.0f);
         settings.fiber_radius = 0.1f;         // 2r/p ≈ 2.5 at this framing: alpha clamps to 1, pixel = L_o
         const Image img = renderer.render(sc.camera, settings);
-        const shading::LightingEvaluator ev(settings.hair, settings.config);
+        const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
         std::vector<std::pair<glm::vec3, glm::vec3>> got_want;
         double peak = 0;
         for (int y = 0; y < img.height; ++y)
@@ -120,7 +119,7 @@ TEST(StrandRenderer, CoverageIsTheProjectedFibreDiameter) {
     settings.background = glm::vec3(0.0f);
     settings.fiber_radius = 0.004f;  // 2r/p ≈ 0.4
     const Image img = renderer.render(sc.camera, settings);
-    const shading::LightingEvaluator ev(settings.hair, settings.config);
+    const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
     // The line is x-major: per column, Σ_y pixel / L_o = the fibre's coverage across one pixel column
     // (× 1/cos of the line's slope, the column's cut through a line of unit width), expected 2r/p.
     const glm::vec2 A = to_pixels(sc.camera, sc.a), B = to_pixels(sc.camera, sc.b);

@@ -14,6 +14,7 @@
 namespace {
 
 using namespace coif::shading;
+using coif::SrbfLight;
 
 void print_single(const std::vector<check::SingleRow>& rows) {
     std::printf("variant   m    median   p95      max      | unweighted median  p95\n");
@@ -225,7 +226,7 @@ TEST(Reference, HSubstitutionMatchesDirectAzimuthalIntegralForR) {
 TEST(Evaluator, SumsLightsAndAppliesShadowTerms) {
     const LightingEvaluator eval(default_hair_params());
     const FibreFrame frame = FibreFrame::from_tangent({0, 1, 0}, {0, 0, 1});
-    const SrbfLight a{{1, 0.2f, 0.1f}, 0.3f, {1.0f, 0.5f, 0.25f}}, b{{-0.5f, -0.2f, 1}, 0.8f, {2.0f, 2.0f, 2.0f}};
+    const SrbfLight a{{1.0f, 0.5f, 0.25f}, {1, 0.2f, 0.1f}, 0.3f}, b{{2.0f, 2.0f, 2.0f}, {-0.5f, -0.2f, 1}, 0.8f};
     const glm::vec3 view(0.3f, 0.1f, 1.0f);
     const SrbfLight both[] = {a, b};
     const PointLighting sum = eval.shade(frame, view, both);
@@ -239,10 +240,10 @@ TEST(Evaluator, SumsLightsAndAppliesShadowTerms) {
     // global term, which would count the unscattered light twice).
     float theta_o, phi_o, theta_j, phi_j;
     coif::glsl::hair_angles(glm::normalize(view), frame.u, frame.v, frame.w, theta_o, phi_o);
-    coif::glsl::hair_angles(glm::normalize(a.direction), frame.u, frame.v, frame.w, theta_j, phi_j);
+    coif::glsl::hair_angles(glm::normalize(a.omega), frame.u, frame.v, frame.w, theta_j, phi_j);
     const glm::vec3 local = eval.ms_local(theta_o, phi_o, theta_j, phi_j, a.lambda, 0.0f);
     for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(pa.multiple[c], a.radiance[c] * eval.params().d_b * local[c], 1e-6f * (1.0f + pa.multiple[c]));
+        EXPECT_NEAR(pa.multiple[c], a.L[c] * eval.params().d_b * local[c], 1e-6f * (1.0f + pa.multiple[c]));
     // Half the lobe blocked, nothing scattered on the way: both parts halve.
     const LightShadow half{0.5f, 0.0f};
     const PointLighting shadowed = eval.shade(frame, view, std::span(&a, 1), std::span(&half, 1));
@@ -263,7 +264,7 @@ TEST(Evaluator, SumsLightsAndAppliesShadowTerms) {
     const glm::vec3 spread = eval.multiple(theta_o, phi_o, theta_j, phi_j, a.lambda, n * fw.w);
     for (int c = 0; c < 3; ++c) {
         const float T_f = std::pow(fw[c], n);
-        const float want = a.radiance[c] * (behind.direct * eval.params().d_b * local[c] +
+        const float want = a.L[c] * (behind.direct * eval.params().d_b * local[c] +
                                             0.7f * std::max(T_f - behind.direct, 0.0f) * spread[c]);
         EXPECT_NEAR(deep.multiple[c], want, 1e-5f * (1.0f + want)) << c;
         EXPECT_NEAR(deep.single[c], behind.direct * pa.single[c], 1e-6f);
