@@ -5,6 +5,8 @@
 #   ./setup.sh test        build (release) and run the whole test suite (what CI runs)
 #   ./setup.sh test-slow   build (release) and run the slow validation (label "slow": brute-force checks)
 #   ./setup.sh test-asan   build the asan preset (AddressSanitizer + UBSan) and run the suite under it
+#   ./setup.sh fuzz [S]    build the fuzz preset (clang-14 libFuzzer + ASan + UBSan) and fuzz every parser for S
+#                          seconds each (default 60); new inputs go to build/fuzz/corpus/, crashes to build/fuzz/crashes/
 #   ./setup.sh build       install and build only
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -30,6 +32,27 @@ build() {  # build <preset>
   cmake --build --preset "$1"
 }
 
+fuzz_all() {  # fuzz_all <seconds per target>
+  local seconds=$1 failed=0
+  mkdir -p build/fuzz/crashes
+  for exe in build/fuzz/fuzz/coif_fuzz_*; do
+    local name=${exe##*/coif_fuzz_}
+    mkdir -p "build/fuzz/corpus/$name"
+    echo "setup: fuzzing $name for ${seconds} s"
+    # The first folder gets the new inputs; the repository's seeds stay as they are. -rss_limit_mb: a parser must
+    # refuse an absurd count before allocating, so 2 GiB is a crash.
+    if ! "$exe" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=30 -print_final_stats=1 \
+         -artifact_prefix="build/fuzz/crashes/$name-" "build/fuzz/corpus/$name" "tests/fuzz/corpus/$name" \
+         2> "build/fuzz/$name.log"; then
+      echo "setup: fuzz target $name FAILED; see build/fuzz/$name.log and build/fuzz/crashes/" >&2
+      tail -n 40 "build/fuzz/$name.log" >&2
+      failed=1
+    fi
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build/fuzz/$name.log" | sed "s/^/  $name /"
+  done
+  return $failed
+}
+
 install_packages
 case "$action" in
   build)     build release ;;
@@ -42,5 +65,7 @@ case "$action" in
              ctest --preset release-slow ;;
   test-asan) build asan
              ctest --preset asan ;;
-  *)         echo "usage: $0 [build|render|test|test-slow|test-asan]" >&2; exit 2 ;;
+  fuzz)      build fuzz
+             fuzz_all "${2:-60}" ;;
+  *)         echo "usage: $0 [build|render|test|test-slow|test-asan|fuzz [seconds]]" >&2; exit 2 ;;
 esac
