@@ -94,7 +94,7 @@ Table make_table() {
                                            [](auto& h) -> auto& { return h.fibre.ecc_a; }));
     t.push_back(angle_param("w_c_deg", kMinLambda, kPi, "azimuthal width w_c of the TRT caustics",
                             [](auto& h) -> auto& { return h.fibre.w_c; }));
-    t.push_back(real_param<HairParameters>("delta_eta_p", "", 1e-3, 2.0, "Δη', the range over which the caustics fade above η' = 2",
+    t.push_back(real_param<HairParameters>("delta_eta_p", "", kMinDeltaEtaPrime, kMaxDeltaEtaPrime, "Δη', the range over which the caustics fade above η' = 2",
                                            [](auto& h) -> auto& { return h.fibre.delta_eta_p; }));
     t.push_back(real_param<HairParameters>("d_b", "", 0.0, 1.0, "backward-scattering density factor d_b of dual scattering",
                                            [](auto& h) -> auto& { return h.fibre.d_b; }));

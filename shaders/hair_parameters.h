@@ -16,6 +16,7 @@
 #include <variant>
 
 #include "models/core/param_table.h"
+#include "models/core/units.h"
 #include "shaders/lighting.h"
 
 namespace coif::shading {
@@ -45,24 +46,29 @@ void validate(const HairParameters& hair, const std::string& place = "hair param
 // (shaders/lighting/srbf_single.glsl) in declaration order, for the code that must visit every field
 // (online/lighting_uniforms.cpp's uniforms and table cache). The GLSL keeps its own declaration; a test
 // (tests/shading/test_hair_parameters.cpp) checks these lists against its text.
+// Each with the range validate() accepts (and NaN/Inf nowhere) and how its message names it.
 struct HairParamsField {
     const char* name;
     std::variant<float HairParams::*, glm::vec3 HairParams::*> member;
     bool in_ms_tables;  // read by the dual-scattering tables (build_ms_tables); σa is not: they span every σa
+    const char* label;  // in validate()'s message (a vec3's channels as label.r, .g, .b)
+    float lo, hi;
+    bool lo_exclusive;
+    const char* unit;
 };
 inline constexpr std::array<HairParamsField, 12> kHairParamsFields = {{
-    {"eta", &HairParams::eta, true},
-    {"sigma_a", &HairParams::sigma_a, false},
-    {"alpha_R", &HairParams::alpha_R, true},
-    {"alpha_TT", &HairParams::alpha_TT, true},
-    {"alpha_TRT", &HairParams::alpha_TRT, true},
-    {"beta_R", &HairParams::beta_R, true},
-    {"beta_TT", &HairParams::beta_TT, true},
-    {"beta_TRT", &HairParams::beta_TRT, true},
-    {"ecc_a", &HairParams::ecc_a, true},
-    {"w_c", &HairParams::w_c, true},
-    {"delta_eta_p", &HairParams::delta_eta_p, true},
-    {"d_b", &HairParams::d_b, true},
+    {"eta", &HairParams::eta, true, "eta (index of refraction)", kMinEta, kMaxEta, true, ""},
+    {"sigma_a", &HairParams::sigma_a, false, "sigma_a", 0.0f, kMaxSigmaA, false, "per unit fibre radius"},
+    {"alpha_R", &HairParams::alpha_R, true, "alpha_R", -kMaxAlpha, kMaxAlpha, false, "rad"},
+    {"alpha_TT", &HairParams::alpha_TT, true, "alpha_TT", -kMaxAlpha, kMaxAlpha, false, "rad"},
+    {"alpha_TRT", &HairParams::alpha_TRT, true, "alpha_TRT", -kMaxAlpha, kMaxAlpha, false, "rad"},
+    {"beta_R", &HairParams::beta_R, true, "beta_R", kMinBeta, kMaxBeta, false, "rad"},
+    {"beta_TT", &HairParams::beta_TT, true, "beta_TT", kMinBeta, kMaxBeta, false, "rad"},
+    {"beta_TRT", &HairParams::beta_TRT, true, "beta_TRT", kMinBeta, kMaxBeta, false, "rad"},
+    {"ecc_a", &HairParams::ecc_a, true, "eccentricity a", kMinEcc, kMaxEcc, false, "(eta* must stay above 1)"},
+    {"w_c", &HairParams::w_c, true, "w_c", kMinLambda, kPiF, false, "rad"},
+    {"delta_eta_p", &HairParams::delta_eta_p, true, "delta_eta_prime", kMinDeltaEtaPrime, kMaxDeltaEtaPrime, false, ""},
+    {"d_b", &HairParams::d_b, true, "d_b", 0.0f, 1.0f, false, ""},
 }};
 
 struct LightingConfigField {

@@ -53,20 +53,16 @@ void link_lobes_to_R(HairParams& p) {
 }
 
 void validate(const HairParams& p, const std::string& place) {
-    check_range(place, "eta (index of refraction)", p.eta, kMinEta, kMaxEta, true, "");
-    for (int c = 0; c < 3; ++c)
-        check_range(place, c == 0 ? "sigma_a.r" : (c == 1 ? "sigma_a.g" : "sigma_a.b"), p.sigma_a[c], 0.0f,
-                    kMaxSigmaA, false, "per unit fibre radius");
-    check_range(place, "alpha_R", p.alpha_R, -kMaxAlpha, kMaxAlpha, false, "rad");
-    check_range(place, "alpha_TT", p.alpha_TT, -kMaxAlpha, kMaxAlpha, false, "rad");
-    check_range(place, "alpha_TRT", p.alpha_TRT, -kMaxAlpha, kMaxAlpha, false, "rad");
-    check_range(place, "beta_R", p.beta_R, kMinBeta, kMaxBeta, false, "rad");
-    check_range(place, "beta_TT", p.beta_TT, kMinBeta, kMaxBeta, false, "rad");
-    check_range(place, "beta_TRT", p.beta_TRT, kMinBeta, kMaxBeta, false, "rad");
-    check_range(place, "eccentricity a", p.ecc_a, kMinEcc, kMaxEcc, false, "(eta* must stay above 1)");
-    check_range(place, "w_c", p.w_c, kMinLambda, kPiF, false, "rad");
-    check_range(place, "delta_eta_prime", p.delta_eta_p, 1e-3f, 2.0f, false, "");
-    check_range(place, "d_b", p.d_b, 0.0f, 1.0f, false, "");
+    // Every field of the one list (shaders/hair_parameters.h kHairParamsFields), in its order.
+    static constexpr const char* channel[3] = {".r", ".g", ".b"};
+    for (const HairParamsField& f : kHairParamsFields) {
+        if (const auto* m = std::get_if<float HairParams::*>(&f.member))
+            check_range(place, f.label, p.*(*m), f.lo, f.hi, f.lo_exclusive, f.unit);
+        else
+            for (int c = 0; c < 3; ++c)
+                check_range(place, (std::string(f.label) + channel[c]).c_str(), (p.*std::get<glm::vec3 HairParams::*>(f.member))[c],
+                            f.lo, f.hi, f.lo_exclusive, f.unit);
+    }
 }
 
 void validate(const LightingConfig& c, const std::string& place) {

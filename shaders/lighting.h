@@ -36,6 +36,8 @@ inline constexpr float kMaxEcc = 1.4142f;
 inline constexpr float kMinLambda = 1e-3f;      // SRBF and caustic bandwidths, rad
 inline constexpr float kMaxLambda = 100.0f;
 inline constexpr float kMaxSigmaA = 1e4f;       // per unit radius; beyond this TT/TRT are exactly 0 anyway
+inline constexpr float kMinDeltaEtaPrime = 1e-3f;  // Δη' (000 §4.2.4): the caustic's fade range above η' = 2
+inline constexpr float kMaxDeltaEtaPrime = 2.0f;
 
 // η = 1.55, brown σa, α_R = -7.5°, β_R = 7.5° with 000's links, a = 1, w_c = 0.15 rad, Δη' = 0.3, d_b = 0.7.
 HairParams default_hair_params();
