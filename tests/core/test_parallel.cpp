@@ -71,6 +71,9 @@ TEST(Parallel, FirstExceptionReachesTheCallerAfterAllWorkersStop) {
                     running.fetch_sub(1);
                     throw coif::Error("some.file", "index 3", "broken");
                 }
+                // Every other index takes a while, so the other workers cannot hand out all 10000 (2 s of work
+                // per worker) in the moment between index 3's throw and the stop it causes.
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
                 running.fetch_sub(1);
             });
             ADD_FAILURE() << "no exception, threads " << threads;
