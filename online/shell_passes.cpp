@@ -12,7 +12,6 @@ namespace coif::gl {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double wall_ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 }  // namespace
 
@@ -123,7 +122,7 @@ double ShadowPass::run(const ShellGpu& gpu, float kappa, bool own_cluster) const
     glDispatchCompute(static_cast<GLuint>((pairs + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glFinish();
-    return wall_ms(t0);
+    return wall_ms_since(t0);
 }
 
 // ---- LightingPass ----------------------------------------------------------------------------------
@@ -265,7 +264,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         lists_->resolve(s.background);
         if (s.timed) {
             glFinish();
-            resolve_ms = wall_ms(t_resolve);
+            resolve_ms = wall_ms_since(t_resolve);
         }
     }
     glDepthMask(GL_TRUE);

@@ -10,6 +10,7 @@
 //   ShellsPass    every cluster's layers, blended (sorted, unsorted) or appended to the fragment lists and
 //                 resolved (exact; online/fragment_lists.h), with the shading compiled per variant.
 #include <array>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <span>
@@ -26,6 +27,11 @@
 #include "online/shells/shell_settings.h"
 
 namespace coif::gl {
+
+// Wall-clock milliseconds since t0 (the passes' timings, ShellSettings::timed).
+inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
 inline constexpr int kLightingTexels = 7;  // RGBA texels of the 27 floats C_k, S_k per lighting sample
 inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)

@@ -17,7 +17,6 @@ namespace {
 constexpr int kShadowGridSize = 64;  // voxels along the hair's longest axis (docs/renderer.md: error and cost)
 
 using Clock = std::chrono::steady_clock;
-double wall_ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 }  // namespace
 
@@ -108,13 +107,13 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floo
     if (!floor_only) m.lighting.run(gpu, s, camera);
     if (s.timed) {
         glFinish();
-        timings_.lighting_wall_ms = floor_only ? 0.0 : wall_ms(t_pass);
+        timings_.lighting_wall_ms = floor_only ? 0.0 : wall_ms_since(t_pass);
         t_pass = Clock::now();
     }
     timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, camera, s, m.jitter, floor_only, m.lighting);
     if (s.timed) {
         glFinish();
-        timings_.shells_wall_ms = wall_ms(t_pass);
+        timings_.shells_wall_ms = wall_ms_since(t_pass);
     }
     check_errors("ShellRenderer::draw");
     if (FragmentLists* lists = m.shells_pass.lists(); lists && !floor_only && s.compositing == Compositing::exact) {

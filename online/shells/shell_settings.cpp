@@ -14,6 +14,11 @@ int supersampling(const ShellSettings& settings) {
     return std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
 }
 
+namespace {
+// Every compositing mode, in the enum's order (the parameters file's choice index is the enum's value).
+constexpr Compositing kCompositings[] = {Compositing::sorted, Compositing::unsorted, Compositing::exact};
+}  // namespace
+
 const char* compositing_name(Compositing c) {
     switch (c) {
         case Compositing::sorted: return "sorted";
@@ -24,7 +29,7 @@ const char* compositing_name(Compositing c) {
 }
 
 Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place) {
-    for (Compositing c : {Compositing::sorted, Compositing::unsorted, Compositing::exact})
+    for (Compositing c : kCompositings)
         if (text == compositing_name(c)) return c;
     throw Error(file, place, "'" + text + "' is not sorted, unsorted or exact");
 }
@@ -45,8 +50,7 @@ ParamTable<ShellSettings> make_table() {
     Param<S> compositing{"compositing", ParamKind::choice, "", 0, 0, false,
                          "exact (per-pixel fragment lists), sorted (clusters back to front) or unsorted",
                          {}, {}, {}, {}};
-    // The choice's index is the enum's value: the names in the enum's order.
-    for (Compositing c : {Compositing::sorted, Compositing::unsorted, Compositing::exact}) compositing.names.emplace_back(compositing_name(c));
+    for (Compositing c : kCompositings) compositing.names.emplace_back(compositing_name(c));
     compositing.get = [](const S& s, int) { return static_cast<double>(s.compositing); };
     compositing.set = [](S& s, int, double v) { s.compositing = static_cast<Compositing>(static_cast<int>(v)); };
     t.push_back(compositing);
