@@ -9,6 +9,7 @@
 
 #include "models/core/atomic_file.h"
 #include "models/core/error.h"
+#include "models/core/json_field.h"
 #include "models/core/units.h"
 
 namespace coif {
@@ -350,15 +351,7 @@ HairStyle style_from_json(const json& doc, const fs::path& file) {
 }
 
 HairStyle parse_style(std::string_view text, const fs::path& file) {
-    json doc;
-    try {
-        doc = json::parse(mark_non_finite(text));
-    } catch (const json::parse_error& e) {
-        throw Error(file, "byte " + std::to_string(e.byte), std::string("not valid JSON: ") + e.what());
-    } catch (const json::exception& e) {
-        throw Error(file, "", std::string("not valid JSON: ") + e.what());
-    }
-    return style_from_json(doc, file);
+    return style_from_json(parse_json(mark_non_finite(text), file), file);
 }
 
 HairStyle read_style(const fs::path& path) {

@@ -9,6 +9,7 @@
 #include "models/core/atomic_file.h"
 #include "models/core/checksum.h"
 #include "models/core/error.h"
+#include "models/core/json_field.h"
 #include "shaders/envmap.h"
 
 namespace coif {
@@ -127,12 +128,7 @@ std::string srbf_lights_to_json(const SrbfLightSet& set) {
 }
 
 SrbfLightSet srbf_lights_from_json(std::string_view text, const fs::path& source) {
-    ojson j;
-    try {
-        j = ojson::parse(text.begin(), text.end());
-    } catch (const ojson::parse_error& e) {
-        throw Error(source, "byte " + std::to_string(e.byte), "not valid JSON");
-    }
+    const ojson j = parse_json<ojson>(text, source);
     Reader r(source);
     if (!j.is_object()) r.fail("", "expected a JSON object (a coif SRBF lights file)");
     if (r.string(r.member(j, "", "format"), "/format") != kFormat)

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "models/core/error.h"
+#include "models/core/json_field.h"
 
 namespace coif {
 
@@ -175,11 +176,7 @@ inline nlohmann::json read_json_file(const std::filesystem::path& path, const ch
     if (!in) throw Error(path, "", std::string("cannot open ") + what);
     std::stringstream text;
     text << in.rdbuf();
-    try {
-        return nlohmann::json::parse(text.str());
-    } catch (const nlohmann::json::parse_error& e) {
-        throw Error(path, "byte " + std::to_string(e.byte), "not valid JSON");
-    }
+    return parse_json(text.str(), path);
 }
 
 // Every written entry of `source`, in table order.
