@@ -389,12 +389,15 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
     }
     const std::uint64_t first = o.shard.first(p.sectors), last = o.shard.last(p.sectors);
     const std::uint64_t hash = params_hash(p);
+    // Held for the whole build: a second build of the same file would clear or mix this one's chunks.
+    const OutputLock lock(out);
     fs::path parts = out;
     parts += ".parts";
     std::error_code ec;
     if (!o.resume) fs::remove_all(parts, ec);
     fs::create_directories(parts, ec);
     if (ec) throw Error(parts, "", "cannot create the chunk folder: " + ec.message());
+    remove_stale_temporaries_in(parts);  // chunks a killed build was writing
 
     std::vector<Chunk> chunks;
     for (std::uint64_t c = first; c < last; c += o.chunk) chunks.push_back({c, std::min<std::uint64_t>(o.chunk, last - c), {}, {}});
@@ -442,6 +445,7 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
 
 void merge_databases(const std::vector<fs::path>& parts, const fs::path& out) {
     if (parts.empty()) throw Error::parameter("PARTS", "no shard files given");
+    const OutputLock lock(out);
     std::map<std::uint64_t, HrirDatabase> by_first;
     std::uint64_t hash = 0;
     DbParams params;

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <vector>
 
+#include "models/core/atomic_file.h"
 #include "models/core/progress.h"
 
 namespace coif::cli {
@@ -40,5 +41,10 @@ void add_json_flag(CLI::App* app, bool& json) {
 }
 
 void print_json(const nlohmann::json& doc) { std::cout << doc.dump(2) << "\n"; }
+
+void lock_output(const std::string& path) {
+    static std::vector<OutputLock> held;  // released (lock files removed) when the process exits
+    held.emplace_back(path);
+}
 
 }  // namespace coif::cli

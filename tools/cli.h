@@ -53,4 +53,9 @@ void add_json_flag(CLI::App* app, bool& json);
 // Prints a JSON document on stdout (2-space indent).
 void print_json(const nlohmann::json& doc);
 
+// Locks a file the command writes (coif::OutputLock) until the process exits: a second coif writing the
+// same file stops at once with a clear error, and temporaries that a killed run left for it are removed.
+// Every command with an output calls it before its work, after the cheap checks of its options.
+void lock_output(const std::string& path);
+
 }  // namespace coif::cli

@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 
+#include "models/core/atomic_file.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/strands.h"
@@ -193,12 +194,6 @@ struct RenderRun {
 };
 
 
-void write_text(const fs::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) throw coif::Error(path, "", "cannot write this file");
-}
-
 // The lights both renderers see, as files: `render` for coif render --env, `reference` for coif reference's
 // lighting options; the lighting-only rows use `single_render`/`single_reference`, always SRBF lights.
 struct BenchLighting {
@@ -237,7 +232,7 @@ BenchLighting bench_lighting(const coif::cli::ReferenceCliOptions& ref, const fs
     } else {
         const std::vector<std::byte> bytes = coif::asset_bytes("default_lights.json");
         const fs::path path = dir / "default_lights.json";
-        write_text(path, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        coif::write_file_atomic(path, bytes);
         b.render = b.single_render = path.string();
         b.reference = b.single_reference = " --lights " + quote(path.string());
         b.words = "the embedded default lights (40 SRBF lights, courtyard)";

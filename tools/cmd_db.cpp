@@ -144,6 +144,7 @@ void add_db(CLI::App& root) {
     plot->add_option("-o,--output", po->out, "Image to write (.png or .exr)")->required();
     coif::cli::examples(plot, "  coif db plot hrir.db --record 17 -o record17.png");
     plot->callback([po] {
+        coif::cli::lock_output(po->out);
         const coif::HrirDatabase d = coif::HrirDatabase::open(po->file);
         coif::write_image(po->out, coif::plot_record(d, po->record));
         std::fprintf(stderr, "wrote %s\n", po->out.c_str());

@@ -70,6 +70,8 @@ void fit_command(const FitOptions& o) {
         if (ext != ".png" && ext != ".exr" && ext != ".hdr")
             throw coif::Error(o.preview, "option --preview", "use a .png, .exr or .hdr file");
     }
+    coif::cli::lock_output(o.output);
+    if (!o.preview.empty()) coif::cli::lock_output(o.preview);
     if (o.settings.lights < 1 || o.settings.lights > coif::kMaxSrbfLights)
         throw coif::Error::parameter("option --lights", std::to_string(o.settings.lights) + ": expected 1.." +
                                                             std::to_string(coif::kMaxSrbfLights));
@@ -319,6 +321,7 @@ void add_env(CLI::App& root) {
     coif::cli::examples(downsample, "  coif env downsample ../shared/data/blender_studiolight_courtyard.exr --width 256 "
                                     "-o tools/assets/default_env.hdr");
     downsample->callback([dso] {
+        coif::cli::lock_output(dso->output);
         coif::EnvMapLoadInfo info;
         const coif::EnvMap map = coif::load_envmap(dso->map, &info);
         for (const std::string& w : info.warnings) std::fprintf(stderr, "coif: warning: %s\n", w.c_str());

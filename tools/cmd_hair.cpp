@@ -102,6 +102,7 @@ void add_hair(CLI::App& root) {
     convert->callback([co] {
         if (fs::path(co->out).extension() != ".hair")
             throw coif::Error(co->out, "", "the output must be a .hair file");
+        coif::cli::lock_output(co->out);
         coif::Strands strands = coif::read_strands(co->in);
         if (co->y_up) strands = coif::oriented_y_up(std::move(strands));
         coif::write_hair(co->out, strands);

@@ -50,6 +50,7 @@ void add_reference(CLI::App& root) {
         const coif::ReferenceSettings settings = o->reference.reference_settings();
         if (!std::isfinite(o->exposure)) throw coif::Error::parameter("option --exposure", "must be a finite number of stops");
         const coif::ReferenceEnvironment env = o->reference.environment();
+        coif::cli::lock_output(o->output);
         std::string label;
         const coif::Strands strands = o->scene.load_strands(&label);
         const coif::Camera camera = o->scene.camera_for(strands);

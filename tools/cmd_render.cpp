@@ -111,6 +111,7 @@ void add_render(CLI::App& root) {
             if (ext != ".exr" && ext != ".png" && ext != ".hdr")
                 throw coif::Error(o->output, "", "unknown image extension '" + ext + "' (use .exr, .png or .hdr)");
         }
+        coif::cli::lock_output(o->output);
         coif::WriteOptions wo;
         wo.exposure = o->exposure;
         if (o->preview || !o->scene.strands.empty()) {

@@ -112,6 +112,7 @@ void add_style(CLI::App& root) {
                              "  coif style import ../shared/data/Curly_100.hair --clusters 8 --gaussian-width 2 -o curly8.json");
     imp->callback([io] {
         const auto t0 = std::chrono::steady_clock::now();
+        coif::cli::lock_output(io->out);
         coif::FitOptions fit = io->fit;
         fit.layout.gaussian_width = io->gaussian_width.value_or(0.0);  // 0: automatic
         fit.layout.grid_s = io->grid[0];
@@ -269,6 +270,7 @@ void add_style(CLI::App& root) {
                              "  coif style export-strands @default -o default.hair --from members");
     exp->callback([eo] {
         if (fs::path(eo->out).extension() != ".hair") throw coif::Error(eo->out, "", "the output must be a .hair file");
+        coif::cli::lock_output(eo->out);
         const coif::HairStyle s = load_style(eo->file);
         coif::StrandSampling o = eo->sampling;
         o.from = eo->from == "members" ? coif::StrandSampling::From::Members : coif::StrandSampling::From::Density;
@@ -310,6 +312,7 @@ void add_style(CLI::App& root) {
                                "  coif render --absorption dyed.exr -o dyed.png");
     paint->callback([po] {
         if (fs::path(po->out).extension() != ".exr") throw coif::Error(po->out, "", "the output must be a .exr file (float σa)");
+        coif::cli::lock_output(po->out);
         const coif::HairStyle s = load_style(po->file);
         const int clusters = static_cast<int>(s.clusters.size());
         const auto colour = [](const std::vector<float>& v, const char* what, glm::vec3 fallback) {
