@@ -417,17 +417,22 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
     // Each chunk holds its own sectors' records, joined in index order below: the file does not depend on
     // the thread count. The first error stops the build (finished chunks stay for --resume).
     const auto t0 = std::chrono::steady_clock::now();
-    parallel_for(chunks.size(), o.threads, [&](std::size_t i) {
-        if (done[i]) return;
-        Chunk& c = chunks[i];
-        for (std::uint64_t k = 0; k < c.count; ++k) {
-            const SectorRecord r = build_sector(p, c.first + k);
-            c.features.insert(c.features.end(), r.features.begin(), r.features.end());
-            encode_values(p.value_type, r.values, c.records);
-            bar.advance();
-        }
-        write_chunk(chunk_path(parts, c.first), hash, p, c);
-    });
+    try {
+        parallel_for(chunks.size(), o.threads, [&](std::size_t i) {
+            if (done[i]) return;
+            Chunk& c = chunks[i];
+            for (std::uint64_t k = 0; k < c.count; ++k) {
+                const SectorRecord r = build_sector(p, c.first + k);
+                c.features.insert(c.features.end(), r.features.begin(), r.features.end());
+                encode_values(p.value_type, r.values, c.records);
+                bar.advance();
+            }
+            write_chunk(chunk_path(parts, c.first), hash, p, c);
+        });
+    } catch (...) {
+        if (fs::is_empty(parts, ec)) fs::remove(parts, ec);  // no chunk finished: nothing to resume from
+        throw;
+    }
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     bar.finish();
 

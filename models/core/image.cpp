@@ -1,9 +1,12 @@
 #include "models/core/image.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "models/core/atomic_file.h"
 #include "models/core/error.h"
@@ -81,9 +84,15 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
     if (ext != ".exr" && ext != ".png" && ext != ".hdr")
         throw Error(path, "", "unknown image extension '" + ext + "' (use .exr, .png or .hdr)");
 
-    write_atomically(path, [&](const fs::path& temp) {
-        auto out = ImageOutput::create(temp.string());
+    // Encoded in memory, then written by write_file_atomic, which checks every write(2): OpenImageIO's own file
+    // writers report no error when the disk fills up (a full tmpfs got 0-byte .exr and .png files with success).
+    std::vector<unsigned char> encoded;
+    {
+        Filesystem::IOVecOutput memory(encoded);
+        auto out = ImageOutput::create(path.string());
         if (!out) throw Error(path, "", "no writer for this format: " + OIIO::geterror());
+        if (!out->supports("ioproxy")) throw Error(path, "", "this format's writer cannot encode into memory");
+        if (!out->set_ioproxy(&memory)) throw Error(path, "", "cannot encode into memory: " + out->geterror());
         const int channels = ext == ".hdr" ? 3 : image.channels;
         const bool png = ext == ".png";
         ImageSpec spec(image.width, image.height, channels,
@@ -104,10 +113,12 @@ void write_image(const fs::path& path, const Image& image, const WriteOptions& o
             }
         }
         if (png) spec.attribute("oiio:ColorSpace", "sRGB");
-        if (!out->open(temp.string(), spec)) throw Error(path, "", "cannot open for writing: " + out->geterror());
-        if (!out->write_image(TypeDesc::FLOAT, data.data())) throw Error(path, "", "write failed: " + out->geterror());
-        if (!out->close()) throw Error(path, "", "write failed on close: " + out->geterror());
-    });
+        if (!out->open(path.string(), spec)) throw Error(path, "", "cannot encode: " + out->geterror());
+        if (!out->write_image(TypeDesc::FLOAT, data.data())) throw Error(path, "", "cannot encode: " + out->geterror());
+        if (!out->close()) throw Error(path, "", "cannot encode: " + out->geterror());
+    }
+    if (encoded.empty()) throw Error(path, "", "the image encoded to no bytes");
+    write_file_atomic(path, std::as_bytes(std::span<const unsigned char>(encoded)));
 }
 
 }  // namespace coif
