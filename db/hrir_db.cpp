@@ -380,6 +380,7 @@ BuildReport build_database(const BuildOptions& o, const fs::path& out) {
     if (p.sectors == 0) throw Error::parameter("--sectors", "must be at least 1");
     if (p.sectors > (1ull << 32)) throw Error::parameter("--sectors", "at most 2^32");
     if (o.threads < 0) throw Error::parameter("--threads", "must be 0 (every hardware thread) or more");
+    (void)thread_count(o.threads);  // above kMaxThreads: refused before anything is written
     if (o.chunk < 1) throw Error::parameter("chunk", "must be at least 1");
     // The reader's checks, before anything is traced or written: a file it would refuse is never built.
     try {

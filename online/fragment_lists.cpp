@@ -115,6 +115,7 @@ FragmentLists::FragmentLists()
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
     // Node indices are uint32 and kFragmentListEnd is reserved.
     max_capacity_ = std::min<std::uint64_t>(static_cast<std::uint64_t>(block) / std::max(kColorBytes, kLinkBytes), kFragmentListEnd - 1);
+    stats_.max_capacity = max_capacity_;
     const std::uint32_t zero = 0;
     counter_ = make_buffer(&zero, sizeof zero, GL_DYNAMIC_STORAGE_BIT);
     over_limit_ = make_buffer(&zero, sizeof zero, GL_DYNAMIC_STORAGE_BIT);

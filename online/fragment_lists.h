@@ -75,6 +75,7 @@ struct FragmentListStats {
     std::uint64_t dropped = 0;                    // of those, not stored (over the capacity)
     std::uint64_t pixels_over_resolve_limit = 0;  // pixels the GPU resolve blended partly out of order
     std::uint64_t capacity = 0;                   // nodes the storage holds
+    std::uint64_t max_capacity = 0;               // nodes it can grow to (the GPU's storage-block limit)
 };
 
 class FragmentLists {

@@ -1,8 +1,11 @@
 #include "online/gl.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <initializer_list>
 #include <set>
 #include <sstream>
+#include <string>
 
 #include "models/core/error.h"
 #include "online/shader_files.h"
@@ -26,11 +29,41 @@ void check_errors(const char* where) {
     }
 }
 
+namespace {
+// A storage allocation that the GPU refused (GL_OUT_OF_MEMORY, or a size over its limits) is an error naming
+// the size, raised where it happens: never a texture or buffer that silently holds nothing.
+void check_allocation(const std::string& what) {
+    const GLenum e = glGetError();
+    if (e == GL_NO_ERROR) return;
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", e);
+    throw Error::parameter("OpenGL", e == GL_OUT_OF_MEMORY ? "out of GPU memory for " + what
+                                                           : "cannot allocate " + what + " (error " + code + ")");
+}
+
+void check_side(const char* kind, GLenum limit_name, std::initializer_list<int> sides) {
+    GLint limit = 0;
+    glGetIntegerv(limit_name, &limit);
+    std::string size;
+    bool over = false;
+    for (int side : sides) {
+        if (!size.empty()) size += 'x';
+        size += std::to_string(side);
+        over = over || side < 1 || side > limit;
+    }
+    if (over)
+        throw Error::parameter("OpenGL", std::string("a ") + size + " " + kind + " texture is outside this GPU's limit of 1.." +
+                                             std::to_string(limit) + " texels per side");
+}
+}  // namespace
+
 Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags) {
     GLuint id = 0;
     glCreateBuffers(1, &id);
+    Buffer b(id);
     glNamedBufferStorage(id, static_cast<GLsizeiptr>(std::max<size_t>(bytes, 1)), data, flags);
-    return Buffer(id);
+    check_allocation("a " + std::to_string(bytes) + "-byte buffer");
+    return b;
 }
 
 void set_sampling(const Texture& texture, Sampling sampling) {
@@ -49,7 +82,9 @@ Texture make_texture_2d(GLenum internal_format, int width, int height, std::opti
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     Texture t(id);
+    check_side("2D", GL_MAX_TEXTURE_SIZE, {width, height});
     glTextureStorage2D(id, 1, internal_format, width, height);
+    check_allocation("a " + std::to_string(width) + "x" + std::to_string(height) + " texture");
     if (sampling) set_sampling(t, *sampling);
     return t;
 }
@@ -58,7 +93,9 @@ Texture make_texture_3d(GLenum internal_format, glm::ivec3 size, std::optional<S
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_3D, 1, &id);
     Texture t(id);
+    check_side("3D", GL_MAX_3D_TEXTURE_SIZE, {size.x, size.y, size.z});
     glTextureStorage3D(id, 1, internal_format, size.x, size.y, size.z);
+    check_allocation("a " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" + std::to_string(size.z) + " texture");
     if (sampling) set_sampling(t, *sampling);
     return t;
 }

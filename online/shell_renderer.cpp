@@ -157,12 +157,29 @@ std::vector<glm::vec3> ShellRenderer::lighting_sample(std::size_t index) const {
 const PreparedShells& ShellRenderer::prepared() const { return impl_->shells; }
 
 Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings) {
+    // One frame of the image. An exact frame that overflowed its fragment storage left holes: it is drawn
+    // again, with the storage grown to what the frame counted. One that still overflows has met the GPU's
+    // storage-block limit, and that is an error: render() never returns an image with holes (draw(), the
+    // real-time path, warns and grows instead, so that the next frame is whole).
+    const auto draw_whole = [&] {
+        draw(camera, settings);
+        const FragmentLists* lists = impl_->shells_pass.lists();
+        if (settings.compositing != Compositing::exact || !lists || lists->stats().dropped == 0) return;
+        draw(camera, settings);
+        const FragmentListStats& st = lists->stats();
+        if (st.dropped > 0)
+            throw Error::parameter("exact compositing",
+                                   "this " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame has " +
+                                       std::to_string(st.fragments) + " fragments, and this GPU's fragment storage holds at most " +
+                                       std::to_string(st.max_capacity) +
+                                       " (its shader-storage block limit): use the sorted or blended compositing, or a smaller image");
+    };
     const int f = supersampling(settings);
     if (f == 1) {  // the blended modes' MSAA, or one exact frame (its lists hold one sample per pixel)
         RenderTarget target(camera.width, camera.height, GL_RGBA16F,
                             settings.compositing == Compositing::exact ? 1 : settings.samples);
         target.bind();
-        draw(camera, settings);
+        draw_whole();
         return target.read_back();
     }
     // The exact compositing keeps one fragment list per pixel, so it antialiases by supersampling: f × f
@@ -176,7 +193,7 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     for (int j = 0; j < f; ++j)
         for (int i = 0; i < f; ++i) {
             impl_->jitter = glm::vec2((i + 0.5f) / f - 0.5f, (j + 0.5f) / f - 0.5f);
-            draw(camera, settings);
+            draw_whole();
             shadows_ms += timings_.shadows_ms;
             const Image frame = target.read_back();
             if (sum.empty()) sum = Image(frame.width, frame.height, frame.channels, 0.0f);

@@ -96,7 +96,9 @@ public:
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);
     // Renders into an offscreen target of the camera's size and returns the linear RGBA image; the exact
     // compositing with samples > 1 averages f² frames, f = round(√samples), shifted to the pixel centres of
-    // an f-times finer grid (supersampling with a box filter, at one frame's memory).
+    // an f-times finer grid (supersampling with a box filter, at one frame's memory). An exact frame that
+    // overflows its fragment storage is drawn again with the storage grown; throws coif::Error::parameter
+    // if it still overflows (the GPU's storage-block limit): never an image with holes.
     Image render(const Camera& camera, const ShellSettings& settings);
     // Every shell fragment of this view (the exact compositing's lists, single sample; `settings`'
     // compositing and samples are ignored), drawn again with more storage if the first try overflowed.

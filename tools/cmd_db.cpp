@@ -37,7 +37,7 @@ void add_db(CLI::App& root) {
     build->add_option("--sectors", bo->b.params.sectors, "Sectors in the whole build (default 1000)");
     build->add_option("--seed", bo->b.params.seed, "Global seed (default 1)");
     build->add_option("--threads", bo->b.threads, "Worker threads (default 0: every hardware thread; was 1 before v0.2)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, coif::kMaxThreads));
     build->add_option("--shard", bo->shard, "Build only shard k of n (0-based k), e.g. 3/8 (default 0/1: everything)");
     build->add_flag("--resume", bo->b.resume, "Reuse the valid finished chunks in FILE.parts/ (default: start afresh)");
     build->add_option("--chunk", bo->b.chunk, "Sectors per resumable chunk (default 64)");
@@ -170,7 +170,7 @@ void add_db(CLI::App& root) {
     eval->add_option("--features", eo->sets, "Feature sets to try: paper, paper+shape, rich, rich+shape (default all)");
     eval->add_option("--blend", eo->blends, "Blends to try: idw, gauss (default both)");
     eval->add_option("--threads", eo->e.threads, "Worker threads (default 0: every hardware thread; was 1 before v0.2)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, coif::kMaxThreads));
     eval->add_flag("--study", eo->study, "Also run the storage/resolution study");
     coif::cli::add_json_flag(eval, eo->json);
     coif::cli::examples(eval, "  coif db eval hrir.db --held-out 200 --threads 2\n  coif db eval hrir.db --held-out 50 --k 4 --features rich+shape --json");

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "offline/envmap.h"
 #include "offline/srbf_lights.h"
 
@@ -40,7 +41,7 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
                   "Light every fibre as if no other fibre blocked the environment (camera rays still stop at the first "
                   "fibre): with --max-depth 1, the lighting alone");
     app->add_option("--seed", settings.seed, "Random seed; the same seed gives the same image on any thread count");
-    app->add_option("--threads", settings.threads, "Worker threads (0 = every hardware thread)")->check(CLI::Range(0, 4096));
+    app->add_option("--threads", settings.threads, "Worker threads (0 = every hardware thread)")->check(CLI::Range(0, coif::kMaxThreads));
     app->add_option("--radius", settings.fiber_radius,
                     "Fibre radius in scene units (0 = auto: 1e-3 of the strands' bounding-box diagonal, ~0.8 px at the default framing)");
     app->add_option("--background", background, "Background colour R G B, linear (default 0.05 0.05 0.06, as coif render)")->expected(3);

@@ -5,6 +5,7 @@
 #include <exception>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -16,6 +17,8 @@ int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardw
 
 int thread_count(int threads) {
     if (threads < 0) throw Error::parameter("threads", "must be 0 (every hardware thread) or more, not " + std::to_string(threads));
+    if (threads > kMaxThreads)
+        throw Error::parameter("threads", std::to_string(threads) + " is more than coif starts (at most " + std::to_string(kMaxThreads) + ")");
     return threads == 0 ? hardware_threads() : threads;
 }
 
@@ -43,7 +46,13 @@ void parallel_for(std::size_t count, int threads, const std::function<void(std::
     {
         std::vector<std::jthread> pool;
         pool.reserve(workers - 1);
-        for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(work);
+        try {
+            for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(work);
+        } catch (const std::system_error& e) {  // the system refused a thread: stop the started ones, then say so
+            next.store(count);
+            pool.clear();
+            throw Error::parameter("threads", "cannot start " + std::to_string(workers) + " threads: " + e.what());
+        }
         work();
     }  // the jthreads join here
     if (error) std::rethrow_exception(error);

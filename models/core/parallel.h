@@ -17,11 +17,16 @@
 
 namespace coif {
 
+// The most threads a `threads` setting may ask for: far above any machine coif runs on, below where a
+// mistyped count would start thousands of threads. A system that refuses to start a thread gets a
+// coif::Error too, never a crash.
+inline constexpr int kMaxThreads = 4096;
+
 // std::thread::hardware_concurrency(), or 1 where the platform cannot tell.
 int hardware_threads();
 
 // The thread count a `threads` setting stands for: 0 → hardware_threads(), n ≥ 1 → n.
-// Throws coif::Error::parameter("threads", …) for a negative value.
+// Throws coif::Error::parameter("threads", …) for a negative value or one above kMaxThreads.
 int thread_count(int threads);
 
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& fn);

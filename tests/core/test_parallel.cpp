@@ -99,6 +99,8 @@ TEST(Parallel, ThreadCountZeroMeansEveryHardwareThread) {
     EXPECT_EQ(coif::thread_count(1), 1);
     EXPECT_EQ(coif::thread_count(5), 5);
     EXPECT_THROW((void)coif::thread_count(-1), coif::Error);
+    EXPECT_EQ(coif::thread_count(coif::kMaxThreads), coif::kMaxThreads);
+    EXPECT_THROW((void)coif::thread_count(coif::kMaxThreads + 1), coif::Error);  // a mistyped count starts no threads
     EXPECT_THROW(coif::parallel_for(3, -2, [](std::size_t) {}), coif::Error);
 }
 

@@ -141,5 +141,25 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
     fs::remove_all(dir);
 }
 
+// The exact compositing's fragment storage has a limit (the GPU's shader-storage block size; 128 MiB, 16.8 M
+// fragments, on llvmpipe), and the default scene at 2560×1440 needs 20.6 M fragments. Over the limit, `coif
+// render` must fail naming it, and write nothing: it used to write the image with holes and exit 0. A GPU
+// with more storage renders the frame whole: then the figures it prints must say that nothing was dropped.
+// Slow: two 2560×1440 frames (about 25 s on 2 cores).
+TEST(CliSlow, ExactCompositingBeyondItsStorageFailsAndWritesNothing) {
+    const auto dir = test::scratch_dir("cli-render-big");
+    const fs::path out = dir / "big.exr";
+    const auto r = run_coif("render --width 2560 --height 1440 -o '" + out.string() + "'");
+    if (r.exit_code == 0) {
+        EXPECT_NE(r.err.find(" (0 dropped)"), std::string::npos) << r.err;
+        EXPECT_TRUE(fs::exists(out));
+    } else {
+        EXPECT_EQ(r.exit_code, 1);
+        EXPECT_NE(r.err.find("fragment storage holds at most"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace coif
