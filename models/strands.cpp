@@ -103,8 +103,12 @@ Strands read_strands(const fs::path& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     if (ext == ".hair") return read_hair(path);
     if (ext == ".data") return read_usc_data(path);
-    throw Error(path, "", "unknown strand file extension '" + ext + "' (coif reads .hair and .data)");
+    if (ext == ".tfx") return parse_tfx(read_file_bytes(path), path);
+    if (ext == ".ply") return parse_ply(read_file_bytes(path), path);
+    throw Error(path, "", "unknown strand file extension '" + ext + "' (coif reads " + strand_extensions() + ")");
 }
+
+const char* strand_extensions() { return ".hair, .data, .tfx or .ply"; }
 
 Strands read_hair(const fs::path& path) { return parse_hair(read_file_bytes(path), path); }
 
@@ -306,13 +310,19 @@ StrandStats strand_stats(const Strands& strands) {
     const char* axis = a.x >= a.y && a.x >= a.z ? (d.x < 0 ? "-x" : "+x")
                      : a.y >= a.z               ? (d.y < 0 ? "-y" : "+y")
                                                 : (d.z < 0 ? "-z" : "+z");
-    st.axis_convention = std::string("coordinates as stored (no axis swap or scaling); hair hangs along ") + axis +
-                         (std::string(axis) == "-y" ? ", so the model is y-up like coif's scenes"
-                                                    : std::string(", so coif rotates ") + axis + " to -y when it places the model in a y-up scene");
+    st.axes_stated = strands.axes_stated;
+    if (strands.axes_stated)
+        st.axis_convention = std::string("y-up as the format states, metres read as centimetres (x 100); hair hangs along ") + axis +
+                             ", kept as it is (no rotation is guessed)";
+    else
+        st.axis_convention = std::string("coordinates as stored (no axis swap or scaling); hair hangs along ") + axis +
+                             (std::string(axis) == "-y" ? ", so the model is y-up like coif's scenes"
+                                                        : std::string(", so coif rotates ") + axis + " to -y when it places the model in a y-up scene");
     return st;
 }
 
 glm::mat3 hang_axis_rotation(const StrandStats& stats) {
+    if (stats.axes_stated) return glm::mat3(1.0f);
     const glm::dvec3 d = stats.mean_root_to_tip;
     const glm::dvec3 a = glm::abs(d);
     glm::vec3 from;

@@ -20,6 +20,23 @@
 //   USC files mark scalp positions without hair as strands of ONE point; those carry no hair, so
 //   they are skipped on read and counted in `Strands::skipped_single_point`.
 //
+// ── AMD TressFX 4 guide strands (.tfx; read; TressFXFileFormat.h in GPUOpen-Effects/TressFX) ──
+//   All little-endian. A 160-byte header: float32 version, uint32 strand count S, uint32 points per strand
+//   V, then uint32 byte offsets of the vertex positions, strand UVs, vertex UVs, thickness and colours
+//   (0: absent), then 32 reserved uint32. The positions are S·V float4 (x, y, z, w) from their offset,
+//   strand after strand; w is TressFX's "movable" flag (0 on the fixed root points), not a coordinate.
+//   coif reads the positions only. TressFX assets are in metres: they are read into centimetres, coif's
+//   scene unit (× kCentimetresPerMetre, models/core/units.h), and are y-up.
+//
+// ── hairutil's binary PLY strands (.ply; read; kenshi84/hairutil) ──
+//   An ASCII header "ply", "format binary_little_endian 1.0", then `element NAME COUNT` lines each
+//   followed by its `property TYPE NAME` lines, up to "end_header\n"; then each element's records, in
+//   header order, each record its properties packed in order. coif needs `element vertex` with float or
+//   double x, y, z and `element strand` with one integer property `nsegs` (segments per strand: nsegs + 1
+//   points, in vertex order); other elements (hairutil's edge) and properties (its per-vertex colour) are
+//   skipped. List properties and other encodings (ascii, big-endian) are refused. Coordinates are kept as
+//   stored (units not stated). Hand-written: Debian packages no PLY library.
+//
 // What bad input gets (a coif::Error naming the file, the place and the problem; nothing is
 // allocated from an unchecked count): a wrong magic; a file shorter than its header; counts that
 // disagree with the file size or with each other (checked before allocating); absurd counts
@@ -59,6 +76,9 @@ struct Strands {
     std::array<char, 88> info{};
 
     std::uint64_t skipped_single_point = 0;  // .data: one-point strands (scalp marks) skipped on read
+    // The format states its axes (TressFX: y-up, read from metres into centimetres): nothing is guessed from
+    // where the hair hangs (a mohawk sweeps along −z on a y-up head), so hang_axis_rotation is the identity.
+    bool axes_stated = false;
 
     std::size_t strand_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
     std::size_t point_count(std::size_t strand) const { return offsets[strand + 1] - offsets[strand]; }
@@ -69,13 +89,18 @@ struct Strands {
     void validate(const std::filesystem::path& source) const;
 };
 
-// By extension: .hair (Yuksel) or .data (USC-HairSalon). Throws coif::Error on any problem.
+// By extension: .hair (Yuksel), .data (USC-HairSalon), .tfx (TressFX) or .ply (hairutil). Throws
+// coif::Error on any problem.
 Strands read_strands(const std::filesystem::path& path);
 Strands read_hair(const std::filesystem::path& path);
 Strands read_usc_data(const std::filesystem::path& path);
 // The same, from bytes already in memory; `name` is used in error messages.
 Strands parse_hair(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
 Strands parse_usc_data(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
+Strands parse_tfx(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
+Strands parse_ply(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
+// The strand extensions read_strands knows, for messages: ".hair, .data, .tfx or .ply".
+const char* strand_extensions();
 
 // Writes a .hair file atomically, with the segments and points arrays always, and the thickness,
 // transparency and colour arrays when present. Throws coif::Error (after validate()) on bad strands.
@@ -92,12 +117,13 @@ struct StrandStats {
     double chord_over_length_mean = 0;   // |tip − root| / arc length: 1 straight, lower wavy/curly
     glm::dvec3 mean_root_to_tip{0};      // unit vector along the sum of root→tip chords: where the hair hangs
     std::string axis_convention;         // what coif assumes about the axes, in words
+    bool axes_stated = false;            // Strands::axes_stated: no rotation is guessed
 };
 
 StrandStats strand_stats(const Strands& strands);
 
 // Rotation that takes the dominant hang axis of the strands (±x, ±y or ±z, from the mean root→tip
-// direction) to −y, coif's "down". Identity for y-up models.
+// direction) to −y, coif's "down". Identity for y-up models, and for formats that state their axes.
 glm::mat3 hang_axis_rotation(const StrandStats& stats);
 // `strands` turned by hang_axis_rotation of their own stats: coif's y-up orientation.
 Strands oriented_y_up(Strands strands);

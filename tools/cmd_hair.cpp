@@ -13,7 +13,11 @@ namespace fs = std::filesystem;
 nlohmann::json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 std::string format_name(const fs::path& p) {
-    return p.extension() == ".data" ? "USC-HairSalon .data" : "Yuksel .hair";
+    const std::string ext = p.extension().string();
+    if (ext == ".data") return "USC-HairSalon .data";
+    if (ext == ".tfx") return "AMD TressFX .tfx";
+    if (ext == ".ply") return "hairutil binary .ply";
+    return "Yuksel .hair";
 }
 
 nlohmann::json stats_json(const fs::path& path, const coif::Strands& strands, const coif::StrandStats& st) {
@@ -57,7 +61,7 @@ void print_stats(const fs::path& path, const coif::Strands& strands, const coif:
 }
 
 void add_hair(CLI::App& root) {
-    CLI::App* hair = coif::cli::noun(root, "hair", "Strand files: inspect and convert (.hair Yuksel, .data USC-HairSalon)");
+    CLI::App* hair = coif::cli::noun(root, "hair", "Strand files: inspect and convert (.hair Yuksel, .data USC-HairSalon, .tfx AMD TressFX, .ply hairutil)");
 
     struct InspectOptions {
         std::vector<std::string> files;
@@ -69,7 +73,7 @@ void add_hair(CLI::App& root) {
         "Read strand files and print what they hold: strand and point counts, points per strand, bounding box,\n"
         "strand and segment lengths, waviness (chord/length), the direction the hair hangs, and the axis\n"
         "convention coif assumes. Coordinates are reported as stored in the file (units are the file's own).");
-    inspect->add_option("files", io->files, "Strand files (.hair or .data)")->required()->check(CLI::ExistingFile);
+    inspect->add_option("files", io->files, "Strand files (.hair, .data, .tfx or .ply)")->required()->check(CLI::ExistingFile);
     coif::cli::add_json_flag(inspect, io->json);
     coif::cli::examples(inspect, "  coif hair inspect ../shared/data/harolongo.data\n  coif hair inspect a.hair b.data --json");
     inspect->callback([io] {
@@ -92,7 +96,7 @@ void add_hair(CLI::App& root) {
         "convert",
         "Convert a strand file to Yuksel's .hair format (written atomically: a failed conversion leaves no file).\n"
         "Points are copied bit for bit unless --y-up is given.");
-    convert->add_option("input", co->in, "Strand file to read (.hair or .data)")->required()->check(CLI::ExistingFile);
+    convert->add_option("input", co->in, "Strand file to read (.hair, .data, .tfx or .ply)")->required()->check(CLI::ExistingFile);
     convert->add_option("output", co->out, "The .hair file to write")->required();
     convert->add_flag("--y-up", co->y_up,
                       "Rotate the model so that its hair hangs along -y (coif's y-up convention); e.g. the CT2Hair "

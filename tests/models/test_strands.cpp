@@ -32,6 +32,7 @@ const Expected kModels[] = {
     {"Bangs_100.hair", 100, 1165, 5, 21, {11.86, 17.10, 31.75}, {247.86, 236.95, 204.86}, 81.7, 0.95, {-1.00, 0.009, -0.004}},
     {"Bangs_100.data", 100, 1165, 5, 21, {11.86, 17.10, 31.75}, {247.86, 236.95, 204.86}, 81.7, 0.95, {-1.00, 0.009, -0.004}},
     {"Curly_100.hair", 100, 2528, 10, 47, {7.59, 28.92, 20.18}, {222.45, 213.39, 253.26}, 48.0, 0.74, {-0.999, -0.003, -0.053}},
+    {"Curly_100.ply", 100, 2528, 10, 47, {7.59, 28.92, 20.18}, {222.45, 213.39, 253.26}, 48.0, 0.74, {-0.999, -0.003, -0.053}},
     {"harolongo.data", 7905, 166005, 21, 21, {-11.83, -14.26, -18.62}, {10.50, 14.20, 4.59}, 23.5, 0.78, {-0.33, -0.90, -0.28}},
 };
 
@@ -70,6 +71,53 @@ TEST(Strands, BangsHairAndDataHoldIdenticalStrands) {
     EXPECT_EQ(a.offsets, b.offsets);
     ASSERT_EQ(a.points.size(), b.points.size());
     EXPECT_EQ(0, std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)));  // bit-identical
+}
+
+TEST(Strands, CurlyPlyAndHairHoldIdenticalStrands) {
+    // PROVENANCE.md: Curly_100.hair keeps the PLY's float32 points byte for byte and its nsegs as segments.
+    COIF_SHARED_DATA(ply, "Curly_100.ply");
+    COIF_SHARED_DATA(hair, "Curly_100.hair");
+    const Strands a = read_strands(ply), b = read_strands(hair);
+    EXPECT_EQ(a.offsets, b.offsets);
+    ASSERT_EQ(a.points.size(), b.points.size());
+    EXPECT_EQ(0, std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)));
+}
+
+TEST(Strands, TressFxMohawkMatchesProvenanceFiguresInCentimetres) {
+    // PROVENANCE.md's figures are in the file's metres, to 3 decimals (bounding box, lengths) or 2 (chord,
+    // direction); coif reads centimetres (× 100). Tolerance: one unit of the last printed digit for the box
+    // (0.001 m = 0.1 cm), half a unit elsewhere.
+    COIF_SHARED_DATA(path, "Ratboy_mohawk.tfx");
+    const Strands s = read_strands(path);
+    const StrandStats st = strand_stats(s);
+    EXPECT_EQ(st.strands, 2228u);
+    EXPECT_EQ(st.points, 71296u);
+    EXPECT_EQ(st.points_min, 32u);
+    EXPECT_EQ(st.points_max, 32u);
+    const glm::dvec3 lo(-9.5, 21.4, -33.6), hi(11.7, 111.0, 27.1), hang(-0.01, 0.09, -1.00);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(st.bbox_min[k], lo[k], 0.1) << "axis " << k;
+        EXPECT_NEAR(st.bbox_max[k], hi[k], 0.1) << "axis " << k;
+        EXPECT_NEAR(st.mean_root_to_tip[k], hang[k], 0.005) << "axis " << k;
+    }
+    EXPECT_NEAR(st.root_bbox_min.y, 22.0, 0.5);  // roots span y 0.22–0.91 m
+    EXPECT_NEAR(st.root_bbox_max.y, 91.0, 0.5);
+    EXPECT_NEAR(st.length_max, 29.5, 0.05);
+    EXPECT_NEAR(st.length_mean, 10.3, 0.05);
+    EXPECT_NEAR(st.chord_over_length_mean, 0.96, 0.005);
+    // 47 strands shorter than 0.01 m, 9 shorter than 0.001 m.
+    int under_1cm = 0, under_1mm = 0;
+    for (std::size_t i = 0; i < s.strand_count(); ++i) {
+        double length = 0;
+        for (std::uint32_t p = s.offsets[i] + 1; p < s.offsets[i + 1]; ++p) length += glm::length(glm::dvec3(s.points[p] - s.points[p - 1]));
+        under_1cm += length < 1.0;
+        under_1mm += length < 0.1;
+    }
+    EXPECT_EQ(under_1cm, 47);
+    EXPECT_EQ(under_1mm, 9);
+    // y-up as TressFX states: the mohawk sweeps along −z, and no rotation is guessed from that.
+    EXPECT_TRUE(st.axes_stated);
+    EXPECT_EQ(hang_axis_rotation(st), glm::mat3(1.0f));
 }
 
 TEST(Strands, HairRewriteIsByteIdenticalToTheOriginal) {
@@ -256,6 +304,79 @@ TEST_F(BadStrandFile, DataAbsurdAndNegativeCounts) {
 
 TEST_F(BadStrandFile, DataNaNCoordinates) {
     expect_error(read_usc_data, write("nan.data", usc({1, 2, f(0), f(NAN), f(0), f(1), f(0), f(0)})), "NaN or infinite");
+}
+
+// The tfx and ply seeds of the fuzzer (tests/fuzz/corpus/): hand-made, valid.
+std::vector<std::byte> seed(const std::string& name) { return read_file_bytes(test::source_dir() / "tests/fuzz/corpus" / name); }
+
+TEST_F(BadStrandFile, TfxSeedReadsInCentimetres) {
+    const Strands s = read_strands(write("ok.tfx", seed("tfx/two_strands.tfx")));
+    EXPECT_EQ(s.strand_count(), 2u);
+    EXPECT_EQ(s.points.size(), 8u);
+    EXPECT_FLOAT_EQ(s.points[0].y, 100.0f);  // 1.0 m
+    EXPECT_TRUE(s.axes_stated);
+}
+
+TEST_F(BadStrandFile, TfxTruncatedAbsurdAndNaN) {
+    const auto good = seed("tfx/two_strands.tfx");
+    expect_error(read_strands, write("empty.tfx", {}), "fewer than the 160-byte TressFX header");
+    auto b = good;
+    b.resize(b.size() - 4);
+    expect_error(read_strands, write("trunc.tfx", b), "past the end");
+    b = good;
+    poke<std::uint32_t>(b, 4, 0xFFFFFFFFu);  // strand count
+    expect_error(read_strands, write("huge.tfx", b), "is absurd");
+    b = good;
+    poke<std::uint32_t>(b, 4, 1000000);  // plausible, but not in this file
+    expect_error(read_strands, write("count.tfx", b), "past the end");
+    b = good;
+    poke<std::uint32_t>(b, 8, 1);  // one point per strand
+    expect_error(read_strands, write("v1.tfx", b), "points per strand");
+    b = good;
+    poke<std::uint32_t>(b, 20, 1u << 30);  // vertex UV offset
+    expect_error(read_strands, write("offset.tfx", b), "outside the");
+    b = good;
+    poke<float>(b, 0, NAN);
+    expect_error(read_strands, write("version.tfx", b), "not a TressFX version");
+    b = good;
+    poke<float>(b, 160 + 4, NAN);
+    expect_error(read_strands, write("nan.tfx", b), "NaN or infinite");
+}
+
+TEST_F(BadStrandFile, PlySeedsRead) {
+    EXPECT_EQ(read_strands(write("a.ply", seed("ply/two_strands_with_colour.ply"))).points.size(), 8u);
+    EXPECT_EQ(read_strands(write("b.ply", seed("ply/plain.ply"))).strand_count(), 3u);
+}
+
+TEST_F(BadStrandFile, PlyBadHeadersCountsAndEncodings) {
+    const auto text = [](const std::string& t) {
+        std::vector<std::byte> b(t.size());
+        std::memcpy(b.data(), t.data(), t.size());
+        return b;
+    };
+    const std::string head = "ply\nformat binary_little_endian 1.0\n";
+    const std::string vertex = "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n";
+    expect_error(read_strands, write("empty.ply", {}), "not a PLY file");
+    expect_error(read_strands, write("noend.ply", text(head + vertex)), "no \"end_header\"");
+    expect_error(read_strands, write("ascii.ply", text("ply\nformat ascii 1.0\n" + vertex + "end_header\n")), "binary_little_endian 1.0 only");
+    expect_error(read_strands, write("list.ply", text(head + vertex + "element face 1\nproperty list uchar int vertex_indices\nend_header\n")),
+                 "list properties");
+    expect_error(read_strands, write("huge.ply", text(head + "element vertex 99999999999\nproperty float x\nend_header\n")),
+                 "do not fit");
+    expect_error(read_strands, write("nostrand.ply", text(head + "element vertex 0\nproperty float x\nend_header\n")), "no strand element");
+    auto b = seed("ply/plain.ply");
+    b.resize(b.size() - 1);
+    expect_error(read_strands, write("trunc.ply", b), "do not fit");
+    b = seed("ply/plain.ply");
+    b.push_back(std::byte{0});
+    expect_error(read_strands, write("trail.ply", b), "bytes after");
+    b = seed("ply/plain.ply");
+    poke<std::uint16_t>(b, b.size() - 2, 40);  // the last strand's nsegs: more points than the file has
+    expect_error(read_strands, write("nsegs.ply", b), "add up to more than");
+    b = seed("ply/plain.ply");
+    const std::string h(reinterpret_cast<const char*>(b.data()), b.size());
+    poke<float>(b, h.find("end_header\n") + 11 + 4, NAN);
+    expect_error(read_strands, write("nan.ply", b), "NaN or infinite");
 }
 
 TEST_F(BadStrandFile, UnknownExtensionAndMissingFile) {

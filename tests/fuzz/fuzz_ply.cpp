@@ -1,0 +1,11 @@
+// hairutil's binary .ply strand reader (models/strands.h parse_ply).
+#include <vector>
+
+#include "models/strands.h"
+#include "tests/fuzz/fuzz.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::vector<std::byte> bytes(reinterpret_cast<const std::byte*>(data), reinterpret_cast<const std::byte*>(data) + size);
+    coif::fuzz::refused_or_parsed([&] { coif::parse_ply(bytes, "fuzz.ply"); });
+    return 0;
+}
