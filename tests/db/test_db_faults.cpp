@@ -1,4 +1,4 @@
-// `coif db build` survives SIGKILL: a build killed at seeded random moments, several times over, and then
+// `coif db build` survives SIGKILL: a build killed at seeded moments of its progress, several times over, and then
 // finished with --resume writes a database byte-identical to an uninterrupted build, and leaves nothing
 // else behind (the killed runs' temporaries and lock file are cleaned up by the run that finishes).
 #include <gtest/gtest.h>
@@ -60,44 +60,60 @@ std::vector<std::string> names_in(const fs::path& dir) {
     return names;
 }
 
+// Finished chunks in the build's chunk folder (their temporaries not counted).
+std::size_t finished_chunks(const fs::path& parts) {
+    std::size_t n = 0;
+    std::error_code ec;
+    for (fs::directory_iterator it(parts, ec), e; !ec && it != e; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        n += name.rfind("chunk-", 0) == 0 && name.find(".tmp-") == std::string::npos;
+    }
+    return n;
+}
+
 TEST(DbFaults, KilledBuildsResumeToTheSameBytes) {
     const auto dir = coif::test::scratch_dir("dbfaults");
     const fs::path reference = dir / "reference.db", killed_dir = dir / "killed", out = killed_dir / "k.db";
+    fs::path parts = out;
+    parts += ".parts";
     fs::create_directories(killed_dir);
-
-    const auto t0 = std::chrono::steady_clock::now();
     const auto ref = run_coif(shell_args(reference, false));
     ASSERT_EQ(ref.exit_code, 0) << ref.err;
-    // The uninterrupted build's time sets the scale of the kill moments (a choice of moments, not a limit).
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
+    // The kill moments are seeded and tied to the build's progress, not to the clock (a sanitizer build or a
+    // loaded machine starts and traces at another pace): run i is killed once the folder holds a seeded
+    // number of finished chunks more than the last run left (1..15 of the 150), plus a seeded 0..20 ms, so
+    // that kills land while sectors are traced, while a chunk is written and flushed, or between the two.
     std::mt19937 rng(2026);
-    std::uniform_real_distribution<double> moment(0.05, 0.35);  // of the uninterrupted build's time
+    std::uniform_int_distribution<std::size_t> more(1, 15);
+    std::uniform_int_distribution<int> extra_us(0, 20000);
     constexpr int kRuns = 8;
-    int killed = 0, finished = 0;
+    int killed = 0;
     std::string log;
     for (int run = 0; run < kRuns; ++run) {
-        const double delay = moment(rng) * seconds;
-        log += "run " + std::to_string(run) + ": kill after " + std::to_string(delay) + " s; ";
+        const std::size_t target = finished_chunks(parts) + more(rng);
+        const int extra = extra_us(rng);
+        log += "run " + std::to_string(run) + ": kill at " + std::to_string(target) + " chunks + " + std::to_string(extra) + " us; ";
         const pid_t pid = spawn_build(out);
         ASSERT_GT(pid, 0);
-        std::this_thread::sleep_for(std::chrono::duration<double>(delay));
-        ::kill(pid, SIGKILL);
         int status = 0;
-        ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-        if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {
-            ++killed;
-            // Killed: no database (not even a partial one) at the output.
-            EXPECT_FALSE(fs::exists(out)) << log;
-        } else {
-            ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << log;
-            ++finished;  // it completed before the kill: start over, so that the next runs are killed mid-build
-            fs::remove(out);
+        bool exited = false;
+        while (finished_chunks(parts) < target) {
+            if (::waitpid(pid, &status, WNOHANG) == pid) {
+                exited = true;
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
         }
+        ASSERT_FALSE(exited) << "the build ended before its kill (status " << status << "): " << log;
+        std::this_thread::sleep_for(std::chrono::microseconds(extra));
+        ::kill(pid, SIGKILL);
+        ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+        ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << log;
+        ++killed;
+        EXPECT_FALSE(fs::exists(out)) << log;  // killed: no database, not even a partial one
     }
-    // Most runs must really be killed mid-build, or this test tests nothing.
-    EXPECT_GE(killed, kRuns - 2) << log;
-
+    const std::size_t left = finished_chunks(parts);
     const auto last = run_coif(shell_args(out, true));
     ASSERT_EQ(last.exit_code, 0) << last.err;
     // "wrote …: sectors 0..300 (N reused), …"
@@ -106,11 +122,11 @@ TEST(DbFaults, KilledBuildsResumeToTheSameBytes) {
     const std::size_t open = last.err.rfind('(', at);
     ASSERT_NE(open, std::string::npos) << last.err;
     const std::string reused = last.err.substr(open + 1, at - open - 1);
-    EXPECT_GT(std::stoi(reused), 0) << "the last run reused nothing: " << log;
+    EXPECT_EQ(std::stoul(reused), 2 * left) << "the last run must reuse every chunk the killed runs finished: " << log;
     EXPECT_EQ(coif::read_file_bytes(out), coif::read_file_bytes(reference)) << log;
     EXPECT_EQ(names_in(killed_dir), std::vector<std::string>{"k.db"}) << log;  // no temporaries, lock or chunks
-    std::printf("%d runs killed, %d finished before their kill; then --resume reused %s sectors and wrote the same bytes\n",
-                killed, finished, reused.c_str());
+    std::printf("%d runs killed mid-build (%s); then --resume reused %s sectors and wrote the same bytes\n", killed,
+                log.c_str(), reused.c_str());
     fs::remove_all(dir);
 }
 

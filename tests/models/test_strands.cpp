@@ -64,23 +64,25 @@ INSTANTIATE_TEST_SUITE_P(SharedData, RealModel, ::testing::ValuesIn(kModels),
                              return n;
                          });
 
+// The same strands, split alike and with bit-identical points.
+void expect_identical_strands(const fs::path& a_path, const fs::path& b_path) {
+    const Strands a = read_strands(a_path), b = read_strands(b_path);
+    EXPECT_EQ(a.offsets, b.offsets);
+    ASSERT_EQ(a.points.size(), b.points.size());
+    EXPECT_EQ(0, std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)));
+}
+
 TEST(Strands, BangsHairAndDataHoldIdenticalStrands) {
     COIF_SHARED_DATA(hair, "Bangs_100.hair");
     COIF_SHARED_DATA(data, "Bangs_100.data");
-    const Strands a = read_strands(hair), b = read_strands(data);
-    EXPECT_EQ(a.offsets, b.offsets);
-    ASSERT_EQ(a.points.size(), b.points.size());
-    EXPECT_EQ(0, std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)));  // bit-identical
+    expect_identical_strands(hair, data);
 }
 
 TEST(Strands, CurlyPlyAndHairHoldIdenticalStrands) {
     // PROVENANCE.md: Curly_100.hair keeps the PLY's float32 points byte for byte and its nsegs as segments.
     COIF_SHARED_DATA(ply, "Curly_100.ply");
     COIF_SHARED_DATA(hair, "Curly_100.hair");
-    const Strands a = read_strands(ply), b = read_strands(hair);
-    EXPECT_EQ(a.offsets, b.offsets);
-    ASSERT_EQ(a.points.size(), b.points.size());
-    EXPECT_EQ(0, std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(glm::vec3)));
+    expect_identical_strands(ply, hair);
 }
 
 TEST(Strands, TressFxMohawkMatchesProvenanceFiguresInCentimetres) {
