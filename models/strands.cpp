@@ -98,17 +98,51 @@ void Strands::validate(const fs::path& source) const {
         if (!finite(colors[i])) throw Error(source, "colour of point " + std::to_string(i), "is NaN or infinite");
 }
 
-Strands read_strands(const fs::path& path) {
+namespace {
+// The strand formats, once: read_strands, strand_extensions and strand_format_name read this table.
+struct StrandFormat {
+    const char* extension;
+    const char* name;
+    Strands (*parse)(const std::vector<std::byte>&, const fs::path&);
+};
+constexpr StrandFormat kStrandFormats[] = {
+    {".hair", "Yuksel .hair", parse_hair},
+    {".data", "USC-HairSalon .data", parse_usc_data},
+    {".tfx", "AMD TressFX .tfx", parse_tfx},
+    {".ply", "hairutil binary .ply", parse_ply},
+};
+
+const StrandFormat* strand_format(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext == ".hair") return read_hair(path);
-    if (ext == ".data") return read_usc_data(path);
-    if (ext == ".tfx") return parse_tfx(read_file_bytes(path), path);
-    if (ext == ".ply") return parse_ply(read_file_bytes(path), path);
-    throw Error(path, "", "unknown strand file extension '" + ext + "' (coif reads " + strand_extensions() + ")");
+    for (const StrandFormat& f : kStrandFormats)
+        if (ext == f.extension) return &f;
+    return nullptr;
+}
+}  // namespace
+
+Strands read_strands(const fs::path& path) {
+    const StrandFormat* f = strand_format(path);
+    if (!f)
+        throw Error(path, "", "unknown strand file extension '" + path.extension().string() + "' (coif reads " +
+                                  strand_extensions() + ")");
+    return f->parse(read_file_bytes(path), path);
 }
 
-const char* strand_extensions() { return ".hair, .data, .tfx or .ply"; }
+const std::string& strand_extensions() {
+    static const std::string text = [] {
+        std::string t;
+        const std::size_t n = std::size(kStrandFormats);
+        for (std::size_t i = 0; i < n; ++i) t += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + kStrandFormats[i].extension;
+        return t;
+    }();
+    return text;
+}
+
+std::string strand_format_name(const fs::path& path) {
+    const StrandFormat* f = strand_format(path);
+    return f ? f->name : "unknown format";
+}
 
 Strands read_hair(const fs::path& path) { return parse_hair(read_file_bytes(path), path); }
 

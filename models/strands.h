@@ -99,8 +99,10 @@ Strands parse_hair(const std::vector<std::byte>& bytes, const std::filesystem::p
 Strands parse_usc_data(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
 Strands parse_tfx(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
 Strands parse_ply(const std::vector<std::byte>& bytes, const std::filesystem::path& name);
-// The strand extensions read_strands knows, for messages: ".hair, .data, .tfx or .ply".
-const char* strand_extensions();
+// The strand extensions read_strands knows, for messages and help: ".hair, .data, .tfx or .ply".
+const std::string& strand_extensions();
+// The format read_strands reads `path` as, in words ("AMD TressFX .tfx"), by its extension.
+std::string strand_format_name(const std::filesystem::path& path);
 
 // Writes a .hair file atomically, with the segments and points arrays always, and the thickness,
 // transparency and colour arrays when present. Throws coif::Error (after validate()) on bad strands.

@@ -69,9 +69,26 @@ Strands parse_tfx(const std::vector<std::byte>& in, const fs::path& path) {
 
 namespace {
 
+// A PLY scalar type, resolved once from its header name (the records are read by a switch, not by names).
+enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64, Unknown };
+
+struct PlyTypeName {
+    const char* name;
+    PlyType type;
+    std::size_t size;
+};
+constexpr PlyTypeName kPlyTypes[] = {
+    {"char", PlyType::Int8, 1},     {"int8", PlyType::Int8, 1},       {"uchar", PlyType::UInt8, 1},   {"uint8", PlyType::UInt8, 1},
+    {"short", PlyType::Int16, 2},   {"int16", PlyType::Int16, 2},     {"ushort", PlyType::UInt16, 2}, {"uint16", PlyType::UInt16, 2},
+    {"int", PlyType::Int32, 4},     {"int32", PlyType::Int32, 4},     {"uint", PlyType::UInt32, 4},   {"uint32", PlyType::UInt32, 4},
+    {"float", PlyType::Float32, 4}, {"float32", PlyType::Float32, 4}, {"double", PlyType::Float64, 8}, {"float64", PlyType::Float64, 8},
+};
+
 struct PlyProperty {
-    std::string name, type;
+    std::string name, type_name;
+    PlyType type = PlyType::Unknown;
     std::size_t size = 0, offset = 0;  // bytes, and within the record
+    bool is_float() const { return type == PlyType::Float32 || type == PlyType::Float64; }
 };
 struct PlyElement {
     std::string name;
@@ -85,25 +102,19 @@ struct PlyElement {
     }
 };
 
-std::size_t ply_type_size(const std::string& t) {
-    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
-    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
-    if (t == "double" || t == "float64") return 8;
-    return 0;
-}
-
-bool ply_float(const std::string& t) { return t == "float" || t == "float32" || t == "double" || t == "float64"; }
-
-double ply_value(const std::byte* p, const std::string& t) {
-    if (t == "char" || t == "int8") return get<std::int8_t>(p);
-    if (t == "uchar" || t == "uint8") return get<std::uint8_t>(p);
-    if (t == "short" || t == "int16") return get<std::int16_t>(p);
-    if (t == "ushort" || t == "uint16") return get<std::uint16_t>(p);
-    if (t == "int" || t == "int32") return get<std::int32_t>(p);
-    if (t == "uint" || t == "uint32") return get<std::uint32_t>(p);
-    if (t == "float" || t == "float32") return get<float>(p);
-    return get<double>(p);
+double ply_value(const std::byte* p, PlyType t) {
+    switch (t) {
+        case PlyType::Int8: return get<std::int8_t>(p);
+        case PlyType::UInt8: return get<std::uint8_t>(p);
+        case PlyType::Int16: return get<std::int16_t>(p);
+        case PlyType::UInt16: return get<std::uint16_t>(p);
+        case PlyType::Int32: return get<std::int32_t>(p);
+        case PlyType::UInt32: return get<std::uint32_t>(p);
+        case PlyType::Float32: return get<float>(p);
+        case PlyType::Float64: return get<double>(p);
+        case PlyType::Unknown: break;
+    }
+    return 0.0;  // unreachable: the header refuses unknown types
 }
 
 }  // namespace
@@ -142,10 +153,11 @@ Strands parse_ply(const std::vector<std::byte>& in, const fs::path& path) {
         } else if (key == "property") {
             if (elements.empty()) throw Error(path, where, "a property before any element");
             PlyProperty p;
-            words >> p.type >> p.name;
-            if (p.type == "list") throw Error(path, where, "list properties are not supported (hairutil's strands have none)");
-            p.size = ply_type_size(p.type);
-            if (p.size == 0 || p.name.empty()) throw Error(path, where, "unknown property type '" + p.type + "'");
+            words >> p.type_name >> p.name;
+            if (p.type_name == "list") throw Error(path, where, "list properties are not supported (hairutil's strands have none)");
+            for (const PlyTypeName& t : kPlyTypes)
+                if (p.type_name == t.name) p.type = t.type, p.size = t.size;
+            if (p.type == PlyType::Unknown || p.name.empty()) throw Error(path, where, "unknown property type '" + p.type_name + "'");
             PlyElement& e = elements.back();
             p.offset = e.record;
             e.record += p.size;
@@ -175,9 +187,9 @@ Strands parse_ply(const std::vector<std::byte>& in, const fs::path& path) {
     if (!strand || !strand->find("nsegs")) throw Error(path, "header", "no strand element with an nsegs property (not hairutil strands?)");
     const PlyProperty* axes[3] = {vertex->find("x"), vertex->find("y"), vertex->find("z")};
     for (const PlyProperty* a : axes)
-        if (!a || !ply_float(a->type)) throw Error(path, "element vertex", "needs float or double properties x, y and z");
+        if (!a || !a->is_float()) throw Error(path, "element vertex", "needs float or double properties x, y and z");
     const PlyProperty& nsegs = *strand->find("nsegs");
-    if (ply_float(nsegs.type)) throw Error(path, "element strand", "nsegs must be an integer property");
+    if (nsegs.is_float()) throw Error(path, "element strand", "nsegs must be an integer property");
     if (strand->count == 0) throw Error(path, "element strand", "the file holds no strands");
     if (strand->count > kMaxStrands || vertex->count > kMaxPoints)
         throw Error(path, "header", "strand or vertex count is absurd (limits " + std::to_string(kMaxStrands) + ", " + std::to_string(kMaxPoints) + ")");

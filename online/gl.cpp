@@ -20,13 +20,17 @@ void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 void delete_program(GLuint id) { glDeleteProgram(id); }
 void delete_query(GLuint id) { glDeleteQueries(1, &id); }
 
+namespace {
+std::string error_code(GLenum e) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", e);
+    return code;
+}
+}  // namespace
+
 void check_errors(const char* where) {
     const GLenum e = glGetError();
-    if (e != GL_NO_ERROR) {
-        char code[16];
-        std::snprintf(code, sizeof code, "0x%04x", e);
-        throw Error::parameter("OpenGL", std::string("error ") + code + " in " + where);
-    }
+    if (e != GL_NO_ERROR) throw Error::parameter("OpenGL", "error " + error_code(e) + " in " + where);
 }
 
 namespace {
@@ -35,10 +39,8 @@ namespace {
 void check_allocation(const std::string& what) {
     const GLenum e = glGetError();
     if (e == GL_NO_ERROR) return;
-    char code[16];
-    std::snprintf(code, sizeof code, "0x%04x", e);
     throw Error::parameter("OpenGL", e == GL_OUT_OF_MEMORY ? "out of GPU memory for " + what
-                                                           : "cannot allocate " + what + " (error " + code + ")");
+                                                           : "cannot allocate " + what + " (error " + error_code(e) + ")");
 }
 
 void check_side(const char* kind, GLenum limit_name, std::initializer_list<int> sides) {

@@ -12,17 +12,9 @@ namespace fs = std::filesystem;
 
 nlohmann::json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
-std::string format_name(const fs::path& p) {
-    const std::string ext = p.extension().string();
-    if (ext == ".data") return "USC-HairSalon .data";
-    if (ext == ".tfx") return "AMD TressFX .tfx";
-    if (ext == ".ply") return "hairutil binary .ply";
-    return "Yuksel .hair";
-}
-
 nlohmann::json stats_json(const fs::path& path, const coif::Strands& strands, const coif::StrandStats& st) {
     return {{"file", path.string()},
-            {"format", format_name(path)},
+            {"format", coif::strand_format_name(path)},
             {"strands", st.strands},
             {"points", st.points},
             {"points_per_strand", {{"min", st.points_min}, {"mean", st.points_mean}, {"max", st.points_max}}},
@@ -44,7 +36,7 @@ void print_stats(const fs::path& path, const coif::Strands& strands, const coif:
         std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", a.x, a.y, a.z);
         return std::string(b);
     };
-    std::printf("%s  (%s)\n", path.string().c_str(), format_name(path).c_str());
+    std::printf("%s  (%s)\n", path.string().c_str(), coif::strand_format_name(path).c_str());
     std::printf("  strands             %zu", st.strands);
     if (strands.skipped_single_point) std::printf("  (+%llu one-point scalp marks skipped)", static_cast<unsigned long long>(strands.skipped_single_point));
     std::printf("\n  points              %zu  (per strand min %zu, mean %.2f, max %zu)\n", st.points, st.points_min, st.points_mean, st.points_max);
@@ -72,8 +64,9 @@ void add_hair(CLI::App& root) {
         "inspect",
         "Read strand files and print what they hold: strand and point counts, points per strand, bounding box,\n"
         "strand and segment lengths, waviness (chord/length), the direction the hair hangs, and the axis\n"
-        "convention coif assumes. Coordinates are reported as stored in the file (units are the file's own).");
-    inspect->add_option("files", io->files, "Strand files (.hair, .data, .tfx or .ply)")->required()->check(CLI::ExistingFile);
+        "convention coif assumes. Coordinates are reported as read: as stored in the file (units are the file's own),\n"
+        "except TressFX's metres, read as centimetres.");
+    inspect->add_option("files", io->files, "Strand files (" + coif::strand_extensions() + ")")->required()->check(CLI::ExistingFile);
     coif::cli::add_json_flag(inspect, io->json);
     coif::cli::examples(inspect, "  coif hair inspect ../shared/data/harolongo.data\n  coif hair inspect a.hair b.data --json");
     inspect->callback([io] {
@@ -96,7 +89,7 @@ void add_hair(CLI::App& root) {
         "convert",
         "Convert a strand file to Yuksel's .hair format (written atomically: a failed conversion leaves no file).\n"
         "Points are copied bit for bit unless --y-up is given.");
-    convert->add_option("input", co->in, "Strand file to read (.hair, .data, .tfx or .ply)")->required()->check(CLI::ExistingFile);
+    convert->add_option("input", co->in, "Strand file to read (" + coif::strand_extensions() + ")")->required()->check(CLI::ExistingFile);
     convert->add_option("output", co->out, "The .hair file to write")->required();
     convert->add_flag("--y-up", co->y_up,
                       "Rotate the model so that its hair hangs along -y (coif's y-up convention); e.g. the CT2Hair "

@@ -81,7 +81,7 @@ void add_style(CLI::App& root) {
         "of the points outside to the envelope (in the file's units), and the share of strands assigned.\n"
         "Strands that hang along -x or ±z (e.g. the CT2Hair-derived files) are rotated to hang along -y; the\n"
         "rotation is recorded in the style's \"source\". Units are kept as in the file.");
-    imp->add_option("model", io->in, "Strand file to fit (.hair, .data, .tfx or .ply)")->required()->check(CLI::ExistingFile);
+    imp->add_option("model", io->in, "Strand file to fit (" + coif::strand_extensions() + ")")->required()->check(CLI::ExistingFile);
     imp->add_option("-o,--output", io->out, "Style file to write (JSON; written atomically)")->required();
     imp->add_option("--clusters", io->fit.clusters, "Number of clusters N (capped at the strand count)")->capture_default_str()->check(CLI::Range(1, 100000));
     imp->add_option("--layers", io->fit.layout.layers, "Layered shells L per cluster")->capture_default_str()->check(CLI::Range(1, coif::kMaxLayers));

@@ -28,7 +28,7 @@ HairStyle load_style(const std::string& path) {
 
 void SceneOptions::add_to(CLI::App* app) {
     app->add_option("--style", style, "Cluster hairstyle (JSON) to draw, or @default for the embedded one");
-    app->add_option("--strands", strands, "Draw this strand file (.hair, .data, .tfx or .ply) instead of a style");
+    app->add_option("--strands", strands, "Draw this strand file (" + coif::strand_extensions() + ") instead of a style");
     app->add_option("--width", width, "Image width in pixels")->check(CLI::Range(1, kMaxRenderSide));
     app->add_option("--height", height, "Image height in pixels")->check(CLI::Range(1, kMaxRenderSide));
     app->add_option("--azimuth", azimuth_deg, "Camera azimuth about +y in degrees, 0 = looking from +z");

@@ -32,7 +32,19 @@ fs::path temp_path_for(const fs::path& path) {
 
 fs::path folder_of(const fs::path& path) { return path.has_parent_path() ? path.parent_path() : fs::path("."); }
 
+// The folder `path` goes into; throws if it does not exist (before anything is created there).
+fs::path existing_folder_of(const fs::path& path) {
+    const fs::path parent = folder_of(path);
+    std::error_code ec;
+    if (!fs::is_directory(parent, ec)) throw Error(path, "", "cannot write: folder '" + parent.string() + "' does not exist");
+    return parent;
+}
+
 std::string errno_text(int e) { return std::strerror(e); }
+
+Error write_failed(const fs::path& path, int e) {
+    return Error(path, "", "write failed: " + errno_text(e) + (e == ENOSPC ? " (the disk is full)" : ""));
+}
 
 // Flushes a written file to the disk. A full disk can surface only here (delayed allocation), so this is
 // where the write is known to have succeeded.
@@ -42,7 +54,7 @@ void sync_file(const fs::path& file, const fs::path& named) {
     if (::fsync(fd) != 0) {
         const int e = errno;
         ::close(fd);
-        throw Error(named, "", "write failed: " + errno_text(e) + (e == ENOSPC ? " (the disk is full)" : ""));
+        throw write_failed(named, e);
     }
     ::close(fd);
 }
@@ -59,36 +71,39 @@ void sync_folder(const fs::path& folder, const fs::path& named) {
     ::close(fd);
 }
 
-// The pid in a temporary's name "<anything>.tmp-<pid>-<n><ext>" (ext empty or starting with '.'), or 0.
-pid_t temporary_owner(const std::string& name) {
+// A coif temporary "<stem>.tmp-<pid>-<n><ext>" (temp_path_for): its writer's pid and the file name it will
+// be renamed to ("<stem><ext>"); pid 0 for any other name.
+struct Temporary {
+    pid_t pid = 0;
+    std::string output;
+};
+
+Temporary parse_temporary(const std::string& name) {
     const std::size_t at = name.rfind(kTempTag);
-    if (at == std::string::npos) return 0;
+    if (at == std::string::npos) return {};
     std::size_t i = at + kTempTag.size();
     const auto digits = [&] {
         const std::size_t from = i;
         while (i < name.size() && name[i] >= '0' && name[i] <= '9') ++i;
         return i - from;
     };
-    const std::size_t pid_begin = i;
-    const std::size_t pid_digits = digits();
-    if (pid_digits == 0 || pid_digits > 9 || i >= name.size() || name[i] != '-') return 0;
-    const pid_t pid = static_cast<pid_t>(std::stol(name.substr(pid_begin, pid_digits)));
+    const std::size_t pid_begin = i, pid_digits = digits();
+    if (pid_digits == 0 || pid_digits > 9 || i >= name.size() || name[i] != '-') return {};
     ++i;
-    if (digits() == 0 || (i < name.size() && name[i] != '.')) return 0;
-    return pid;
+    if (digits() == 0 || (i < name.size() && name[i] != '.')) return {};
+    return {static_cast<pid_t>(std::stol(name.substr(pid_begin, pid_digits))), name.substr(0, at) + name.substr(i)};
 }
 
 bool process_running(pid_t pid) { return ::kill(pid, 0) == 0 || errno == EPERM; }
 
-// Removes the temporaries in `folder` that `belongs` accepts and whose writer is gone.
+// Removes the temporaries in `folder` whose output `belongs` accepts and whose writer is gone.
 template <class Belongs>
 std::size_t remove_stale(const fs::path& folder, Belongs&& belongs) {
     std::error_code ec;
     std::size_t removed = 0;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        const pid_t pid = temporary_owner(name);
-        if (pid <= 0 || !belongs(name) || process_running(pid)) continue;
+        const Temporary t = parse_temporary(it->path().filename().string());
+        if (t.pid <= 0 || !belongs(t.output) || process_running(t.pid)) continue;
         std::error_code rm;
         if (fs::remove(it->path(), rm)) ++removed;
     }
@@ -160,10 +175,8 @@ std::shared_ptr<HeldLock> take_lock(const fs::path& path) {
 }  // namespace
 
 void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-    const fs::path parent = folder_of(path);
+    const fs::path parent = existing_folder_of(path);
     std::error_code ec;
-    if (!fs::is_directory(parent, ec))
-        throw Error(path, "", "cannot write: folder '" + parent.string() + "' does not exist");
     if (fs::is_directory(path, ec)) throw Error(path, "", "cannot write: it is a folder");
     const fs::path temp = temp_path_for(path);
     try {
@@ -192,11 +205,11 @@ void write_file_atomic(const fs::path& path, std::span<const std::byte> bytes) {
             if (n <= 0) {
                 const int e = n < 0 ? errno : EIO;
                 ::close(fd);
-                throw Error(path, "", "write failed: " + errno_text(e) + (e == ENOSPC ? " (the disk is full)" : ""));
+                throw write_failed(path, e);
             }
             done += static_cast<std::size_t>(n);
         }
-        if (::close(fd) != 0) throw Error(path, "", "write failed: " + errno_text(errno));
+        if (::close(fd) != 0) throw write_failed(path, errno);
     });
 }
 
@@ -227,10 +240,8 @@ fs::path OutputLock::lock_file(const fs::path& path) {
 }
 
 OutputLock::OutputLock(const fs::path& path) : path_(path) {
-    const fs::path parent = folder_of(path);
+    existing_folder_of(path);
     std::error_code ec;
-    if (!fs::is_directory(parent, ec))
-        throw Error(path, "", "cannot write: folder '" + parent.string() + "' does not exist");
     const fs::path key = fs::absolute(path, ec).lexically_normal();
     std::lock_guard guard(held_mutex);
     std::weak_ptr<HeldLock>& slot = held_locks[ec ? path : key];
@@ -244,12 +255,8 @@ OutputLock::OutputLock(const fs::path& path) : path_(path) {
 }
 
 std::size_t remove_stale_temporaries(const fs::path& path) {
-    const std::string prefix = path.stem().string() + std::string(kTempTag), ext = path.extension().string();
-    return remove_stale(folder_of(path), [&](const std::string& name) {
-        return name.size() >= prefix.size() + ext.size() && name.compare(0, prefix.size(), prefix) == 0 &&
-               name.compare(name.size() - ext.size(), ext.size(), ext) == 0 &&
-               name.find('.', prefix.size()) == (ext.empty() ? std::string::npos : name.size() - ext.size());
-    });
+    const std::string output = path.filename().string();
+    return remove_stale(folder_of(path), [&](const std::string& of) { return of == output; });
 }
 
 std::size_t remove_stale_temporaries_in(const fs::path& folder) {
