@@ -26,6 +26,7 @@
 #include "online/shells/shell_settings.h"
 #include "tools/assets.h"
 #include "tools/cli.h"
+#include "tools/compare_report.h"
 #include "tools/reference_options.h"
 #include "tools/scene_options.h"
 
@@ -176,16 +177,14 @@ CoverageStats coverage_stats(const coif::Image& ref, const coif::Image& ren) {
     return {sum_ref > 0 ? sum_ren / sum_ref : 0.0, n ? abs_sum / double(n) : 0.0};
 }
 
-nlohmann::json metric_value(double v) {
-    if (std::isinf(v)) return "inf";
-    return v;
-}
+using coif::cli::compare_json;
+using coif::cli::metric_json;
 
-nlohmann::json metrics_json(const coif::CompareResult& q) {
-    return {{"mask_pixels", q.mask.count},
-            {"linear", {{"psnr_db", metric_value(q.linear.psnr_db)}, {"ssim", q.linear.ssim}, {"flip_mean", q.linear.flip}}},
-            {"tone_mapped",
-             {{"psnr_db", metric_value(q.tone_mapped.psnr_db)}, {"ssim", q.tone_mapped.ssim}, {"flip_mean", q.tone_mapped.flip}}}};
+// One line of the appearance metrics under a row of the table.
+void print_appearance(const coif::AppearanceMetrics& m, const char* what) {
+    std::printf("  %-38s radiance ratio %s | IoU %s | blurred PSNR %s dB, SSIM %.3f | detail ratio %s\n", what,
+                coif::cli::format_rgb(m.radiance_ratio, 3).c_str(), coif::format_metric(m.mask_iou, 3).c_str(),
+                coif::format_metric(m.blurred_psnr_db, 2).c_str(), m.blurred_ssim, coif::format_metric(m.detail_ratio, 3).c_str());
 }
 struct RenderRun {
     fs::path image;
@@ -457,19 +456,17 @@ void add_bench_quality(CLI::App& root) {
                                   {"reference_seconds", tf.wall},
                                   {"reference_cpu_seconds", tf.cpu},
                                   {"time_ratio", tf.wall / tr.wall},
-                                  {"mask_pixels", q.mask.count},
-                                  {"linear", {{"psnr_db", metric_value(q.linear.psnr_db)}, {"ssim", q.linear.ssim}, {"flip_mean", q.linear.flip}}},
-                                  {"tone_mapped",
-                                   {{"psnr_db", metric_value(q.tone_mapped.psnr_db)}, {"ssim", q.tone_mapped.ssim}, {"flip_mean", q.tone_mapped.flip}}}};
+                                  {"mask_pixels", q.mask.count}};
+            row.update(compare_json(q));  // linear, tone_mapped, appearance, ...
             if (fit_seconds > 0) row["style_fit_seconds"] = fit_seconds;
             if (sc.lighting_only) {
-                row["radiance_where_both_hit"] = metrics_json(radiance);
-                if (o->convergence) row["radiance_where_both_hit"]["reference_convergence"] = metrics_json(ref_run.radiance_convergence);
+                row["radiance_where_both_hit"] = compare_json(radiance);
+                if (o->convergence) row["radiance_where_both_hit"]["reference_convergence"] = compare_json(ref_run.radiance_convergence);
                 row["coverage"] = {{"render_over_reference", coverage.ratio}, {"mean_abs_difference", coverage.mean_abs}};
             }
             if (o->convergence)
-                row["reference_convergence"] = {{"psnr_db_tone_mapped", metric_value(conv.tone_mapped.psnr_db)},
-                                                {"psnr_db_linear", metric_value(conv.linear.psnr_db)},
+                row["reference_convergence"] = {{"psnr_db_tone_mapped", metric_json(conv.tone_mapped.psnr_db)},
+                                                {"psnr_db_linear", metric_json(conv.linear.psnr_db)},
                                                 {"ssim_tone_mapped", conv.tone_mapped.ssim},
                                                 {"flip_mean_tone_mapped", conv.tone_mapped.flip}};
             rows.push_back(row);
@@ -479,6 +476,8 @@ void add_bench_quality(CLI::App& root) {
                             coif::format_metric(q.tone_mapped.psnr_db, 2).c_str(), q.tone_mapped.ssim, q.tone_mapped.flip,
                             o->convergence ? coif::format_metric(conv.tone_mapped.psnr_db, 2).c_str() : "-",
                             o->convergence ? coif::format_metric(conv.tone_mapped.flip, 4).c_str() : "-");
+                print_appearance(q.appearance, "appearance");
+                if (o->convergence) print_appearance(conv.appearance, "reference seed vs seed");
                 if (sc.lighting_only) {
                     const coif::CompareResult& rc = ref_run.radiance_convergence;
                     std::printf("  radiance where both hit (%6zu px)    coverage ratio %5.3f, |dA| %5.3f | %8s %8s %7.4f %7.4f | %8s %7s\n",

@@ -224,12 +224,14 @@ HairMask image_hair_mask(const Image& image, MaskMode mode, float exposure, cons
         std::fill(m.inside.begin(), m.inside.end(), 1);
         m.count = m.inside.size();
         m.rule = "every pixel";
+        m.alpha = has_informative_alpha(image);
         return m;
     }
     if (mode == MaskMode::alpha || (mode == MaskMode::automatic && has_informative_alpha(image))) {
         if (image.channels < 4) throw Error(name, "mask", "--mask alpha: the image has no alpha channel");
         for (size_t i = 0; i < m.inside.size(); ++i) m.inside[i] = image.pixels[i * 4 + 3] > kMaskAlphaThreshold;
         m.rule = "alpha > " + format_metric(kMaskAlphaThreshold, 2);
+        m.alpha = true;
     } else {
         const float scale = std::exp2(exposure);
         const auto tm = [&](int x, int y, int c) { return tone_map_srgb(image.at(x, y)[c], scale); };
@@ -250,6 +252,7 @@ HairMask image_hair_mask(const Image& image, MaskMode mode, float exposure, cons
                 for (int c = 0; c < 3; ++c) hair = hair || std::abs(tm(x, y, c) - bg[c]) > kBackgroundTolerance;
                 m.inside[static_cast<size_t>(y) * image.width + x] = hair;
             }
+        for (int c = 0; c < 3; ++c) m.background[c] = image.at(0, 0)[c];
         char buf[160];
         std::snprintf(buf, sizeof buf, "differs from the corner background (sRGB %.3f %.3f %.3f) by > 1.5/255", bg[0], bg[1], bg[2]);
         m.rule = buf;
@@ -258,12 +261,13 @@ HairMask image_hair_mask(const Image& image, MaskMode mode, float exposure, cons
     return m;
 }
 
-HairMask hair_mask(const Image& a, const Image& b, MaskMode mode, float exposure) {
+HairMasks hair_masks(const Image& a, const Image& b, MaskMode mode, float exposure) {
     if (a.width != b.width || a.height != b.height)
         throw Error::parameter("images", "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " and " +
                                              std::to_string(b.width) + "x" + std::to_string(b.height));
-    const HairMask ma = image_hair_mask(a, mode, exposure, "A");
-    const HairMask mb = image_hair_mask(b, mode, exposure, "B");
+    HairMasks masks{image_hair_mask(a, mode, exposure, "A"), image_hair_mask(b, mode, exposure, "B"), {}};
+    const HairMask& ma = masks.a;
+    const HairMask& mb = masks.b;
     if (ma.rule.empty() && mb.rule.empty())
         throw Error::parameter("mask", "neither image has alpha or a uniform background (equal corner pixels), so hair pixels cannot "
                                        "be told apart: use --mask none, or images with alpha");
@@ -273,8 +277,11 @@ HairMask hair_mask(const Image& a, const Image& b, MaskMode mode, float exposure
     m.rule = ma.rule == mb.rule ? ma.rule + " in A or B"
                                 : "A: " + (ma.rule.empty() ? std::string("none") : ma.rule) + "; B: " + (mb.rule.empty() ? std::string("none") : mb.rule);
     if (m.count == 0) throw Error::parameter("mask", "no hair pixels in either image (" + m.rule + ")");
-    return m;
+    masks.either = std::move(m);
+    return masks;
 }
+
+HairMask hair_mask(const Image& a, const Image& b, MaskMode mode, float exposure) { return hair_masks(a, b, mode, exposure).either; }
 
 // ───────────────────────── planes ─────────────────────────
 
@@ -303,6 +310,13 @@ double masked_mean(const std::vector<float>& map, const HairMask& mask) {
     for (size_t i = 0; i < map.size(); ++i)
         if (mask.inside[i]) sum += map[i], ++n;
     return n ? sum / double(n) : 0.0;
+}
+
+Planes gaussian_blur(const Planes& p, double sigma) {
+    const std::vector<float> g = gaussian_taps(static_cast<int>(std::ceil(3.0 * sigma)), sigma);
+    Planes out = p;
+    for (int c = 0; c < 3; ++c) out.c[c] = filter_separable(p.c[c], p.width, p.height, g, g);
+    return out;
 }
 
 // ───────────────────────── PSNR, SSIM ─────────────────────────
@@ -446,6 +460,74 @@ std::vector<float> flip_hdr_map(const Planes& ref, const Planes& test, const Hdr
     return out;
 }
 
+// ───────────────────────── appearance metrics ─────────────────────────
+
+namespace {
+
+// R = Σ c·L / Σ c over `both` (image_metrics.h): the coverage-weighted mean hair radiance.
+void mean_hair_radiance(const Image& im, const HairMask& how, const std::vector<std::uint8_t>& both, double out[3]) {
+    double sum[3] = {0, 0, 0}, weight = 0;
+    for (size_t i = 0; i < both.size(); ++i) {
+        if (!both[i]) continue;
+        const float* p = im.pixels.data() + i * im.channels;
+        const double c = how.alpha ? double(p[3]) : 1.0;
+        for (int k = 0; k < 3; ++k) sum[k] += c * (how.alpha ? double(p[k]) : double(p[k]) - how.background[k]);
+        weight += c;
+    }
+    for (int k = 0; k < 3; ++k) out[k] = weight > 0 ? sum[k] / weight : 0.0;
+}
+
+// RMS over `both` and the three channels of p − G_σ * p.
+double detail_rms(const Planes& p, const std::vector<std::uint8_t>& both) {
+    const Planes low = gaussian_blur(p, kDetailSigma);
+    double se = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < both.size(); ++i) {
+        if (!both[i]) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(p.c[c][i]) - double(low.c[c][i]);
+            se += d * d;
+        }
+        n += 3;
+    }
+    return n ? std::sqrt(se / double(n)) : 0.0;
+}
+
+}  // namespace
+
+AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairMasks& masks, const Planes& ta, const Planes& tb,
+                                     double blur_sigma, const std::string& names) {
+    AppearanceMetrics m;
+    m.blur_sigma = blur_sigma;
+    const bool own_masks = !masks.a.rule.empty() && !masks.b.rule.empty();
+    // An image without a mask of its own (auto mode, no alpha and no uniform background) takes the other's.
+    const HairMask& ma = masks.a.rule.empty() ? masks.b : masks.a;
+    const HairMask& mb = masks.b.rule.empty() ? masks.a : masks.b;
+    std::vector<std::uint8_t> both(masks.either.inside.size());
+    for (size_t i = 0; i < both.size(); ++i) {
+        both[i] = ma.inside[i] && mb.inside[i];
+        m.pixels_both += both[i];
+    }
+    m.pixels_a = ma.count;
+    m.pixels_b = mb.count;
+    m.pixels_either = masks.either.count;
+    if (m.pixels_both == 0)
+        throw Error(names, "hair masks", "no pixel is hair in both images (A: " + std::to_string(ma.count) + " pixels, B: " +
+                                             std::to_string(mb.count) + "), so their hair radiance cannot be compared");
+    m.mask_iou = own_masks ? double(m.pixels_both) / double(m.pixels_either) : std::numeric_limits<double>::quiet_NaN();
+    mean_hair_radiance(a, ma, both, m.radiance_a);
+    mean_hair_radiance(b, mb, both, m.radiance_b);
+    for (int c = 0; c < 3; ++c)
+        m.radiance_ratio[c] = m.radiance_a[c] != 0.0 ? m.radiance_b[c] / m.radiance_a[c] : std::numeric_limits<double>::quiet_NaN();
+    const Planes ba = gaussian_blur(ta, blur_sigma), bb = gaussian_blur(tb, blur_sigma);
+    m.blurred_psnr_db = psnr(ba, bb, masks.either, 1.0);
+    m.blurred_ssim = masked_mean(ssim_map(ba, bb, 1.0), masks.either);
+    m.detail_a = detail_rms(ta, both);
+    m.detail_b = detail_rms(tb, both);
+    m.detail_ratio = m.detail_a > 0 ? m.detail_b / m.detail_a : std::numeric_limits<double>::quiet_NaN();
+    return m;
+}
+
 // ───────────────────────── the comparison ─────────────────────────
 
 CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& o, const std::string& a_name,
@@ -456,6 +538,8 @@ CompareResult compare_images(const Image& a, const Image& b, const CompareOption
     if (!std::isfinite(o.exposure)) throw Error::parameter("option --exposure", "must be a finite number of stops");
     if (!(o.pixels_per_degree > 0) || !std::isfinite(o.pixels_per_degree))
         throw Error::parameter("option --ppd", "must be a positive number of pixels per degree");
+    if (!(o.blur_sigma > 0) || !std::isfinite(o.blur_sigma) || o.blur_sigma > 1000)
+        throw Error::parameter("option --blur", "must be a blur sigma in pixels, > 0 and at most 1000");
     for (const auto* im : {&a, &b}) {
         for (size_t i = 0; i < im->pixels.size(); ++i)
             if (!std::isfinite(im->pixels[i])) {
@@ -468,11 +552,13 @@ CompareResult compare_images(const Image& a, const Image& b, const CompareOption
     CompareResult r;
     r.width = a.width;
     r.height = a.height;
+    HairMasks masks;
     try {
-        r.mask = hair_mask(a, b, o.mask, o.exposure);
+        masks = hair_masks(a, b, o.mask, o.exposure);
     } catch (const Error& e) {
         throw Error(a_name + " vs " + b_name, e.place(), e.problem());
     }
+    r.mask = masks.either;
     const Planes la = linear_planes(a), lb = linear_planes(b);
     // The linear peak: the 99th percentile of A's brightest channel over the mask, so that a few
     // fireflies of a noisy reference do not set the scale.
@@ -503,6 +589,7 @@ CompareResult compare_images(const Image& a, const Image& b, const CompareOption
     r.tone_mapped_all.psnr_db = psnr(ta, tb, all, 1.0);
     r.tone_mapped_all.ssim = masked_mean(ssim_t, all);
     r.tone_mapped_all.flip = masked_mean(r.flip_tone_mapped, all);
+    r.appearance = appearance_metrics(a, b, masks, ta, tb, o.blur_sigma, a_name + " vs " + b_name);
     return r;
 }
 
@@ -533,6 +620,7 @@ Image error_heatmap(const std::vector<float>& error, const HairMask& mask) {
 
 std::string format_metric(double value, int decimals) {
     if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+    if (std::isnan(value)) return "n/a";
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
     return buf;

@@ -31,6 +31,24 @@
 //         at 0.85 after tone mapping, stop puts A's median masked luminance there; max(2, ⌈stop − start⌉)
 //         exposures), per-pixel maximum.
 //
+// ── Appearance metrics (docs/quality.md "Appearance metrics": why each is there) ──
+//   Per-pixel PSNR/FLIP of a statistical texture against individual fibres reward blur, so these measure
+//   what a person sees when fibres cannot line up pixel by pixel. Masks: M_A and M_B are each image's own
+//   hair mask; "both" = M_A ∩ M_B, "either" = M_A ∪ M_B.
+//   radiance ratio  per channel, R_B / R_A with R = Σ_both c·L / Σ_both c, the coverage-weighted mean hair
+//                   radiance where both images show hair: for an image with alpha c = α and L = its RGB
+//                   (straight alpha, as coif writes it); for an image over a uniform background c = 1 and
+//                   L = pixel − background (so coverage is folded into L there). Linear pixels.
+//   mask IoU        |M_A ∩ M_B| / |M_A ∪ M_B| (coverage and silhouette; undefined, NaN, when an image
+//                   gives no mask of its own).
+//   blurred PSNR/SSIM  PSNR and SSIM of the tone-mapped images after a Gaussian blur of σ = blur_sigma
+//                   (default 2 px, cluster scale), over "either": the look at the scale of clusters, with
+//                   fibre placement blurred away.
+//   detail ratio    D_B / D_A with D = RMS over "both" and the three tone-mapped channels of the high-pass
+//                   image − G_1px * image (σ = kDetailSigma): fibre structure; a smeared texture has < 1,
+//                   a noisy one > 1.
+//   FLIP            as above, at the stated pixels per degree (CompareOptions::pixels_per_degree).
+//
 // ── Mask of hair pixels (the metrics are means over it; counts are reported) ──
 //   Each image gets its own mask; the mask used is their union (a pixel that is hair in either image).
 //   alpha:      the image has a 4th channel not everywhere ≥ 1 − 1e-6; hair where α > kMaskAlphaThreshold.
@@ -59,6 +77,10 @@ inline constexpr float kMaskAlphaThreshold = 0.05f;
 inline constexpr float kBackgroundTolerance = 1.5f / 255.0f;
 // Percentile of A's masked pixels that sets the linear PSNR/SSIM peak.
 inline constexpr double kLinearPeakPercentile = 0.99;
+// σ of the blurred PSNR/SSIM: 2 px is about a cluster's strand spacing at 360×240 and below a cluster's width.
+inline constexpr double kDefaultBlurSigma = 2.0;
+// σ of the detail ratio's low-pass: 1 px keeps only what changes from pixel to pixel (fibres).
+inline constexpr double kDetailSigma = 1.0;
 
 enum class MaskMode { automatic, alpha, background, none };
 MaskMode parse_mask_mode(const std::string& text);  // "auto" | "alpha" | "background" | "none"
@@ -68,12 +90,21 @@ struct HairMask {
     std::vector<std::uint8_t> inside;  // width × height, 1 = hair
     std::size_t count = 0;
     std::string rule;                  // how it was made, in words (for reports)
+    // How to read a hair pixel's radiance (the radiance ratio): with `alpha`, c = α and L = RGB; otherwise
+    // c = 1 and L = RGB − background (linear; 0 for mode none).
+    bool alpha = false;
+    float background[3] = {0, 0, 0};
 };
 
 // The mask of one image alone (see the header comment); `rule` says which rule applied, or is empty
 // when none did (auto mode only). Throws coif::Error when an explicit mode cannot be applied.
 HairMask image_hair_mask(const Image& image, MaskMode mode, float exposure, const std::string& name);
-// The union of both images' masks. Throws coif::Error if the sizes differ or no mask can be made.
+// Both images' own masks and their union. Throws coif::Error if the sizes differ or no mask can be made.
+struct HairMasks {
+    HairMask a, b, either;
+};
+HairMasks hair_masks(const Image& a, const Image& b, MaskMode mode, float exposure);
+// The union of both images' masks (hair_masks(...).either).
 HairMask hair_mask(const Image& a, const Image& b, MaskMode mode, float exposure);
 
 // RGB planes of an image (channel-major, width × height each).
@@ -104,16 +135,35 @@ std::vector<float> flip_hdr_map(const Planes& reference_linear, const Planes& te
 
 double masked_mean(const std::vector<float>& map, const HairMask& mask);
 
+// Gaussian blur of σ pixels (taps to ±⌈3σ⌉, borders clamped) of every plane.
+Planes gaussian_blur(const Planes& p, double sigma);
+
 struct MetricSet {
     double psnr_db = 0;   // +∞ for identical pixels
     double ssim = 0;
     double flip = 0;      // mean FLIP
 };
 
+struct AppearanceMetrics {
+    std::size_t pixels_a = 0, pixels_b = 0, pixels_both = 0, pixels_either = 0;
+    double mask_iou = 0;                            // NaN when an image gives no mask of its own
+    double radiance_a[3] = {}, radiance_b[3] = {};  // coverage-weighted mean hair radiance over "both"
+    double radiance_ratio[3] = {};                  // radiance_b / radiance_a (NaN where A's is 0)
+    double blur_sigma = kDefaultBlurSigma;
+    double blurred_psnr_db = 0, blurred_ssim = 0;   // tone-mapped, after the blur, over "either"
+    double detail_a = 0, detail_b = 0, detail_ratio = 0;
+};
+
+// The appearance metrics alone, from both images, their masks and their tone-mapped planes (compare_images
+// calls it). Throws coif::Error naming `names` when no pixel is hair in both images.
+AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairMasks& masks, const Planes& ta, const Planes& tb,
+                                     double blur_sigma, const std::string& names);
+
 struct CompareOptions {
     MaskMode mask = MaskMode::automatic;
     float exposure = 0.0f;   // stops, for the tone-mapped metrics
     double pixels_per_degree = kFlipPixelsPerDegree;
+    double blur_sigma = kDefaultBlurSigma;  // pixels, > 0
 };
 
 struct CompareResult {
@@ -125,10 +175,12 @@ struct CompareResult {
     MetricSet tone_mapped;             // on the mask
     MetricSet tone_mapped_all;         // every pixel, for reference
     std::vector<float> flip_tone_mapped;  // the LDR-FLIP map behind tone_mapped.flip (for the heatmap)
+    AppearanceMetrics appearance;
 };
 
 // Compares A (reference) and B (test). Throws coif::Error (naming a_name/b_name) if the sizes differ,
-// a pixel is NaN/Inf, or no mask can be made.
+// a pixel is NaN/Inf, the blur σ is not a positive number, no mask can be made, or the two images' hair
+// does not overlap (no pixel is hair in both, so there is no radiance to compare).
 CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& options,
                              const std::string& a_name = "A", const std::string& b_name = "B");
 
@@ -137,7 +189,7 @@ CompareResult compare_images(const Image& a, const Image& b, const CompareOption
 // linear RGB image whose PNG (write_image's sRGB tone map at exposure 0) shows the ramp's sRGB colours.
 Image error_heatmap(const std::vector<float>& error, const HairMask& mask);
 
-// "inf" for +∞, else the number with `decimals` decimals.
+// "inf" for +∞, "n/a" for NaN, else the number with `decimals` decimals.
 std::string format_metric(double value, int decimals);
 
 }  // namespace coif

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <random>
 
 #include "models/core/error.h"
@@ -139,6 +140,141 @@ TEST(Compare, BadInputIsAClearError) {
     CompareOptions none;
     none.mask = MaskMode::none;
     EXPECT_NO_THROW(compare_images(ramp, ramp, none));
+}
+
+// ───────────────────────── appearance metrics ─────────────────────────
+
+Image scaled_hair(const Image& a, float k) {
+    Image b = a;
+    for (size_t i = 0; i < b.pixels.size(); ++i)
+        if (i % 4 != 3) b.pixels[i] *= k;
+    return b;
+}
+
+TEST(CompareAppearance, RadianceRatioIsTheScaleOfTheHair) {
+    // Straight alpha: scaling RGB by k scales the coverage-weighted mean radiance by k exactly (float
+    // rounding of the sums: 1e-5); halving every alpha leaves it unchanged (weights cancel) and the masks equal.
+    const Image a = strokes(64, 48, 11, 0.05f);
+    const CompareResult r = compare_images(a, scaled_hair(a, 1.7f), {});
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.appearance.radiance_ratio[c], 1.7, 1e-5);
+    EXPECT_DOUBLE_EQ(r.appearance.mask_iou, 1.0);
+    Image thin = a;
+    for (size_t i = 3; i < thin.pixels.size(); i += 4) thin.pixels[i] *= 0.5f;
+    const CompareResult t = compare_images(a, thin, {});
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.appearance.radiance_ratio[c], 1.0, 1e-6);
+    // Over a uniform background (no alpha): the radiance is the pixel minus the corners' colour, so
+    // bg + k (A − bg) has ratio k.
+    const float bg[3] = {0.05f, 0.05f, 0.06f};
+    Image ra(64, 48, 3), rb(64, 48, 3);
+    for (int i = 0; i < 64 * 48; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float al = a.pixels[4 * i + 3];
+            ra.pixels[3 * i + c] = al * a.pixels[4 * i + c] + (1 - al) * bg[c];
+            rb.pixels[3 * i + c] = bg[c] + 0.6f * (ra.pixels[3 * i + c] - bg[c]);
+        }
+    const CompareResult o = compare_images(ra, rb, {});
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(o.appearance.radiance_ratio[c], 0.6, 1e-4);
+}
+
+TEST(CompareAppearance, MaskIouCountsOverlapOverUnion) {
+    // Two 20×10 boxes, B shifted right by 5 px: overlap 15×10, union 25×10, IoU 0.6 exactly.
+    Image a(48, 32, 4), b(48, 32, 4);
+    for (int y = 10; y < 20; ++y)
+        for (int x = 0; x < 20; ++x) {
+            float* pa = a.at(5 + x, y);
+            float* pb = b.at(10 + x, y);
+            for (int c = 0; c < 3; ++c) pa[c] = pb[c] = 0.5f;
+            pa[3] = pb[3] = 1.0f;
+        }
+    const CompareResult r = compare_images(a, b, {});
+    EXPECT_EQ(r.appearance.pixels_both, 150u);
+    EXPECT_EQ(r.appearance.pixels_either, 250u);
+    EXPECT_DOUBLE_EQ(r.appearance.mask_iou, 0.6);
+}
+
+TEST(CompareAppearance, DetailRatioPrefersMisalignedFibresToBlurWherePsnrPrefersBlur) {
+    // The property the metric exists for. B1 = A's fibres moved by 1 px (the same look, fibres not lined
+    // up); B2 = A blurred (a smear). Per-pixel PSNR rates the smear higher; the detail ratio keeps the
+    // moved fibres at ~1 (measured 1.00 ± 0.05) and puts the smear far below (< 0.6); the blurred PSNR
+    // rates the moved fibres as close as the smear (both > per-pixel PSNR + 3 dB).
+    const int w = 96, h = 64;
+    const auto fibres = [&](int shift) {
+        Image im(w, h, 3);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const bool inside = x >= 8 && x < w - 8 && y >= 8 && y < h - 8;
+                const bool fibre = ((x + shift) % 3) == 0;
+                for (int c = 0; c < 3; ++c) im.at(x, y)[c] = inside ? (fibre ? 0.6f : 0.15f) * (1.0f - 0.2f * c) : 0.0f;
+            }
+        return im;
+    };
+    const Image a = fibres(0), moved = fibres(1);
+    Planes blurred = gaussian_blur(linear_planes(a), 1.5);
+    Image smear = a;
+    for (int i = 0; i < w * h; ++i)
+        for (int c = 0; c < 3; ++c) smear.pixels[3 * i + c] = a.pixels[3 * i] > 0 ? blurred.c[c][i] : 0.0f;  // the same silhouette
+    CompareOptions o;
+    o.mask = MaskMode::background;
+    const CompareResult rm = compare_images(a, moved, o), rs = compare_images(a, smear, o);
+    EXPECT_GT(rs.tone_mapped.psnr_db, rm.tone_mapped.psnr_db);
+    EXPECT_NEAR(rm.appearance.detail_ratio, 1.0, 0.05);
+    EXPECT_LT(rs.appearance.detail_ratio, 0.6);
+    EXPECT_GT(rm.appearance.blurred_psnr_db, rm.tone_mapped.psnr_db + 3.0);
+    // A noisier image has more detail than its reference.
+    const Image a2 = strokes(64, 48, 12, 0.0f);
+    EXPECT_GT(compare_images(a2, strokes(64, 48, 13, 0.15f), {}).appearance.detail_ratio, 1.1);
+}
+
+TEST(CompareAppearance, BadBlurOrNoOverlapIsAClearError) {
+    const Image a = strokes(32, 32, 1, 0.0f);
+    for (double sigma : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+        CompareOptions o;
+        o.blur_sigma = sigma;
+        try {
+            compare_images(a, a, o);
+            FAIL() << "expected coif::Error for sigma " << sigma;
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr("--blur"));
+        }
+    }
+    Image left(32, 32, 4), right(32, 32, 4);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 8; ++x) left.at(x, y)[3] = right.at(31 - x, y)[3] = 1.0f, left.at(x, y)[0] = right.at(31 - x, y)[0] = 0.5f;
+    try {
+        compare_images(left, right, {}, "l.exr", "r.exr");
+        FAIL() << "expected coif::Error";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("no pixel is hair in both"));
+        EXPECT_THAT(e.what(), HasSubstr("l.exr"));
+    }
+}
+
+TEST(CompareCli, ThresholdsSetTheExitStatus) {
+    const fs::path dir = test::scratch_dir("compare-gates");
+    const Image a = strokes(64, 48, 7, 0.05f);
+    write_image(dir / "a.exr", a);
+    write_image(dir / "dark.exr", scaled_hair(a, 0.5f));
+    const std::string ab = "compare '" + (dir / "a.exr").string() + "' '" + (dir / "dark.exr").string() + "' ";
+    const test::RunResult pass = test::run_coif(ab + "--min-iou 0.99 --detail-range 0.3 1.2 --radiance-range 0.45 0.55");
+    EXPECT_EQ(pass.exit_code, 0) << pass.err;
+    EXPECT_THAT(pass.out, HasSubstr("radiance ratio"));
+    EXPECT_THAT(pass.out, HasSubstr("pass"));
+    const test::RunResult fail = test::run_coif(ab + "--radiance-range 0.8 1.25 --json");
+    EXPECT_EQ(fail.exit_code, 1);
+    EXPECT_THAT(fail.err, HasSubstr("radiance ratio R"));
+    const auto doc = nlohmann::json::parse(fail.out);  // the report is still printed whole
+    EXPECT_NEAR(doc["appearance"]["radiance_ratio"][1].get<double>(), 0.5, 1e-5);
+    EXPECT_EQ(doc["appearance"]["mask_iou"].get<double>(), 1.0);
+    EXPECT_FALSE(doc["gates"][0]["pass"].get<bool>());
+    for (const char* key : {"blurred_psnr_db", "blurred_ssim", "detail_ratio", "blur_sigma_px"}) EXPECT_TRUE(doc["appearance"].contains(key)) << key;
+    // Bad options: exit 1 or 2, a message naming the option, and no heatmap.
+    for (const std::string bad : {"--blur 0", "--blur -2", "--blur nan", "--detail-range 2 1", "--radiance-range nan 1", "--min-iou nan"}) {
+        const test::RunResult r = test::run_coif(ab + bad + " --heatmap '" + (dir / "h.png").string() + "'");
+        EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 2) << bad << ": " << r.exit_code;
+        EXPECT_THAT(r.err, HasSubstr(bad.substr(0, bad.find(' ')))) << bad;
+        EXPECT_FALSE(fs::exists(dir / "h.png")) << bad;
+    }
+    fs::remove_all(dir);
 }
 
 TEST(CompareCli, SelfComparePrintsInfAndZeroFlip) {
