@@ -90,7 +90,7 @@ struct ReferenceSettings {
     std::uint64_t seed = 1;
     int threads = 0;                   // 0: every hardware thread
     float fiber_radius = 0.0f;         // scene units; 0: auto_fiber_radius
-    glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB; coif render's strand-preview background
+    glm::vec3 background = kDefaultBackground;  // linear RGB
     bool background_env = false;       // show the environment where no fibre is hit
     bool alpha = false;                // straight-alpha RGBA instead of RGB over the background
     bool progress = true;

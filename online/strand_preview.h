@@ -17,7 +17,7 @@ namespace coif::gl {
 struct StrandPreviewSettings {
     glm::vec3 hair_color{0.30f, 0.17f, 0.08f};    // linear RGB
     glm::vec3 light_direction{0.4f, 0.8f, 0.45f};  // towards the light, world space
-    glm::vec3 background{0.05f, 0.05f, 0.06f};
+    glm::vec3 background = kDefaultBackground;
     float specular_exponent = 60.0f;
     int samples = 4;                               // MSAA samples of the offscreen target
 };

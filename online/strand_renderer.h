@@ -43,7 +43,7 @@ namespace coif::gl {
 struct StrandSettings {
     shading::HairParameters hair;  // multiple: the unoccluded fibre's d_b 𝓜^L (off: single scattering only); d_f unused (no shadows)
     float fiber_radius = 0.0f;     // world units; 0: the reference's auto radius (models/strands.h auto_fiber_radius)
-    glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair (the reference's default)
+    glm::vec3 background = kDefaultBackground;  // linear RGB behind the hair
     int samples = 4;               // MSAA samples of the offscreen target
     bool sort_segments = true;     // back-to-front order of segments (off: file order)
     bool per_fragment = false;     // evaluate the lighting per fragment, not per strand point (see above)

@@ -35,6 +35,7 @@ struct RenderOptions {
     float radius = 0.0f;
     bool per_fragment = false;
     bool alpha = false;
+    std::vector<float> background;
 };
 
 void add_render(CLI::App& root) {
@@ -55,6 +56,7 @@ void add_render(CLI::App& root) {
         "Output: .png (tone-mapped sRGB: exposure, clip, sRGB curve) or .exr (linear half float); written atomically.");
     o->scene.add_to(render);
     render->add_option("-o,--output", o->output, "Image to write (.png, .exr or .hdr)")->capture_default_str();
+    coif::cli::add_background_option(render, o->background);
     render->add_option("--db", o->db, "HRIR database (coif db build); default: the cached default database");
     render->add_option("--env", o->env,
                        "Environment: SRBF lights JSON (coif env fit) or an equirectangular .exr/.hdr map (fitted with "
@@ -121,6 +123,7 @@ void add_render(CLI::App& root) {
             settings.fiber_radius = o->radius;
             settings.per_fragment = o->per_fragment;
             settings.alpha = o->alpha;
+            settings.background = coif::cli::background_color(o->background);
             if (!o->params.empty()) {
                 settings.hair = coif::gl::read_shell_settings(o->params).hair;
             }
@@ -150,6 +153,7 @@ void add_render(CLI::App& root) {
         coif::gl::ShellSettings settings;
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
+        settings.background = coif::cli::background_color(o->background);
         if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
         coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);

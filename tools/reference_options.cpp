@@ -7,6 +7,7 @@
 #include "models/core/parallel.h"
 #include "offline/envmap.h"
 #include "offline/srbf_lights.h"
+#include "tools/scene_options.h"
 
 namespace coif::cli {
 namespace {
@@ -44,7 +45,7 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
     app->add_option("--threads", settings.threads, "Worker threads (0 = every hardware thread)")->check(CLI::Range(0, coif::kMaxThreads));
     app->add_option("--radius", settings.fiber_radius,
                     "Fibre radius in scene units (0 = auto: 1e-3 of the strands' bounding-box diagonal, ~0.8 px at the default framing)");
-    app->add_option("--background", background, "Background colour R G B, linear (default 0.05 0.05 0.06, as coif render)")->expected(3);
+    add_background_option(app, background);
     app->add_flag("--background-env", background_env, "Show the environment where no fibre is hit");
     app->add_flag("--alpha", settings.alpha, "Write straight-alpha RGBA: A = fibre coverage, RGB = hair colour alone (no background)");
 }
@@ -61,7 +62,7 @@ ReferenceEnvironment ReferenceCliOptions::environment() const {
 
 ReferenceSettings ReferenceCliOptions::reference_settings() const {
     ReferenceSettings s = settings;
-    if (!background.empty()) s.background = rgb(background, "--background");
+    s.background = background_color(background);
     s.background_env = background_env;
     validate(s);
     return s;

@@ -1,5 +1,6 @@
 #include "tools/scene_options.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -12,6 +13,21 @@
 #include "tools/assets.h"
 
 namespace coif::cli {
+
+void add_background_option(CLI::App* app, std::vector<float>& rgb) {
+    app->add_option("--background", rgb,
+                    "Background colour R G B, linear (default 0.05 0.05 0.06; 0 0 0 for coif compare's radiance ratio "
+                    "of images without alpha)")
+        ->expected(3);
+}
+
+glm::vec3 background_color(const std::vector<float>& v) {
+    if (v.empty()) return kDefaultBackground;
+    if (v.size() != 3) throw Error::parameter("option --background", "needs three numbers R G B");
+    for (float c : v)
+        if (!std::isfinite(c)) throw Error::parameter("option --background", "must be finite numbers");
+    return {v[0], v[1], v[2]};
+}
 
 // Largest image side the commands accept (the GL target may allow less; it is checked too).
 constexpr int kMaxRenderSide = 16384;

@@ -52,6 +52,12 @@ struct SceneOptions {
     gl::SceneFraming shell_framing(bool strands_option = true) const;
 };
 
+// --background R G B (linear), shared by the commands that write a picture of the hair (render, reference):
+// `add_background_option` declares it; `background_color` gives the colour (kDefaultBackground when not given),
+// throwing coif::Error for a count other than 3 or a non-finite number.
+void add_background_option(CLI::App* app, std::vector<float>& rgb);
+glm::vec3 background_color(const std::vector<float>& rgb);
+
 // --env: "" = the embedded default lights, *.json = a lights file, else a map fitted with 40 lights.
 std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* label);
 

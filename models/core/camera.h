@@ -8,6 +8,10 @@
 
 namespace coif {
 
+// Linear RGB behind the hair in every renderer's image unless a command is given --background (a dark
+// blue-grey, so that dark hair stands out).
+inline constexpr glm::vec3 kDefaultBackground{0.05f, 0.05f, 0.06f};
+
 struct Camera {
     glm::vec3 eye{0, 0, 50};
     glm::vec3 target{0};

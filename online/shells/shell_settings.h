@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 #include <string>
 
+#include "models/core/camera.h"
 #include "models/core/param_table.h"
 #include "shaders/hair_parameters.h"
 
@@ -26,7 +27,7 @@ struct ShellSettings {
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
-    glm::vec3 background{0.05f, 0.05f, 0.06f};  // linear RGB behind the hair
+    glm::vec3 background = kDefaultBackground;  // linear RGB behind the hair
     int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact: render() averages round(√samples)² shifted frames
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re), 4 shadow AOV

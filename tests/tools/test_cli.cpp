@@ -72,6 +72,13 @@ TEST(Cli, FailuresExitOneNameTheFileAndWriteNothing) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 
+    for (const char* bad : {"--background nan 0 0", "--background 1 1"}) {
+        r = run_coif(std::string("render ") + bad + " -o '" + (dir / "out.png").string() + "'");
+        EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 2) << bad;
+        EXPECT_THAT(r.err, HasSubstr("--background")) << bad;
+        EXPECT_FALSE(fs::exists(dir / "out.png"));
+    }
+
     r = run_coif("render -o '" + (dir / "image.xyz").string() + "'");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_THAT(r.err, HasSubstr("unknown image extension"));
@@ -138,6 +145,17 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
     int hair = 0;
     for (int i = 0; i < img.width * img.height; ++i) hair += img.pixels[size_t(i) * 4] > 0.08f;
     EXPECT_GT(hair, img.width * img.height / 20) << "no hair visible in the default render";
+    // --background sets what both renderers draw behind the hair (the shells here, the strand lines below;
+    // the EXR is half float: 1e-3).
+    for (const char* which : {"", " --preview-strands"}) {
+        const auto b = run_coif(std::string("render --width 64 --height 48 --samples 1 --background 0.3 0.1 0.2") + which + " -o '" +
+                                (dir / "b.exr").string() + "'");
+        ASSERT_EQ(b.exit_code, 0) << b.err;
+        const Image bg = read_image(dir / "b.exr");
+        EXPECT_NEAR(bg.at(0, 0)[0], 0.3f, 1e-3f) << which;
+        EXPECT_NEAR(bg.at(0, 0)[1], 0.1f, 1e-3f) << which;
+        EXPECT_NEAR(bg.at(0, 0)[2], 0.2f, 1e-3f) << which;
+    }
     fs::remove_all(dir);
 }
 
