@@ -6,10 +6,12 @@
 #include <cstdio>
 
 #include "models/core/error.h"
+#include "models/core/units.h"
 #include "models/style_strands.h"
 #include "online/shell_passes.h"
 #include "online/shells/record_atlas.h"
 #include "online/shells/shadow_grid.h"
+#include "shaders/lighting.h"
 
 namespace coif::gl {
 namespace {
@@ -64,6 +66,7 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     stats_.grid_y = grid.dims.y;
     stats_.grid_z = grid.dims.z;
     stats_.voxel = grid.voxel;
+    stats_.tangent_spread = strand_tangent_spread(strands, grid.voxel);
     bounds_min_ = p.bounds_min;
     bounds_max_ = p.bounds_max;
     if (sampled_strands) *sampled_strands = std::move(strands);
@@ -79,8 +82,13 @@ void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
 
 void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_absorption(map); }
 
-void ShellRenderer::draw(const Camera& camera, const ShellSettings& s, bool floor_only) {
+void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {
     Impl& m = *impl_;
+    // The fibres' tangents spread about the shells' (ShellSettings::tangent_spread): the lighting sees the
+    // widened lobes, in the lighting pass and in the per-fragment path alike.
+    ShellSettings s = settings;
+    if (!(s.tangent_spread <= 60.0f * float(kPi / 180.0))) throw Error::parameter("tangent_spread", "must be at most 60 degrees");
+    s.hair.fibre = shading::with_tangent_spread(s.hair.fibre, s.tangent_spread >= 0.0f ? s.tangent_spread : stats_.tangent_spread);
     ShellGpu& gpu = *m.gpu;
     if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
         throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));

@@ -64,6 +64,9 @@ struct ShellStats {
     std::size_t shadow_strands = 0;  // strands voxelized for the shadow grid
     int grid_x = 0, grid_y = 0, grid_z = 0;
     float voxel = 0;                 // shadow grid voxel edge, world units
+    // RMS angle (radians) of the style's strands about their local mean direction within a shadow-grid voxel
+    // (strand_tangent_spread): the lighting's default ShellSettings::tangent_spread.
+    float tangent_spread = 0;
 };
 
 // Of the last draw, milliseconds: with ShellSettings::timed, wall-clock times of each pass between glFinish

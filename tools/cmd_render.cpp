@@ -180,7 +180,10 @@ void add_render(CLI::App& root) {
         if (const int f = coif::gl::supersampling(settings); f > 1)
             std::fprintf(stderr, "antialiased: %d frames shifted within the pixel, averaged (--samples %d; 1 for one frame)\n",
                          f * f, settings.samples);
-        std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d\n", st.re_norm, st.atlas_width, st.atlas_height);
+        std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d; fibre tangents spread %.1f deg about the shells' (%s)\n", st.re_norm,
+                     st.atlas_width, st.atlas_height,
+                     (settings.tangent_spread >= 0 ? settings.tangent_spread : st.tangent_spread) * 180.0 / coif::kPi,
+                     settings.tangent_spread >= 0 ? "--params tangent_spread_deg" : "measured from the style's strands");
         if (settings.shadows) {
             double direct = 0, fibres = 0;
             const std::vector<glm::vec2> sh = renderer.read_shadows();

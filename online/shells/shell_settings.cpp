@@ -57,6 +57,11 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(bool_param<S>("shadows", "shadows between clusters", [](auto& s) -> auto& { return s.shadows; }));
     t.push_back(bool_param<S>("own_cluster_shadow", "shadow rays start on the cluster's axis, through its own fibres",
                               [](auto& s) -> auto& { return s.own_cluster_shadow; }));
+    Param<S> spread = real_param<S>("tangent_spread_deg", "deg", 0.0, 60.0,
+                                    "RMS spread of fibre tangents about the shells' (widens beta; absent: the style's, measured)",
+                                    [](auto& s) -> auto& { return s.tangent_spread; });
+    spread.written = [](const S& s) { return s.tangent_spread >= 0.0f; };
+    t.push_back(spread);
     Param<S> kappa_between = real_param<S>("kappa_between", "per unit density per lambda of path", 0.0, 100.0,
                                            "kappa of the shadow pass (absent: the database's)",
                                            [](auto& s) -> auto& { return s.kappa_between; });

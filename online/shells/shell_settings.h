@@ -25,6 +25,10 @@ struct ShellSettings {
     bool own_cluster_shadow = true; // shadow rays start on the cluster's axis, through its own fibres (false: outside it)
     float kappa_between = -1.0f;    // κ of the shadow pass (opacity per unit density per λ of path); < 0: the database's
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
+    // RMS spread (radians) of the fibres' tangents about the shell's tangent, by which the lighting widens the
+    // longitudinal lobes (shading::with_tangent_spread); < 0: the style's own, measured from its strands
+    // (ShellStats::tangent_spread). 0 lights every fibre as if it lay along its cluster's axis.
+    float tangent_spread = -1.0f;
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
     glm::vec3 background = kDefaultBackground;  // linear RGB behind the hair

@@ -21,6 +21,29 @@ Strands straight_strands(int count, float length) {
     return s;
 }
 
+TEST(ShadowGrid, TangentSpreadIsTheRmsAngleAboutTheLocalDirection) {
+    // Parallel straight strands: every segment along its cell's mean, spread 0 (float rounding: 1e-3 rad).
+    EXPECT_NEAR(strand_tangent_spread(straight_strands(50, 2.0f), 0.5f), 0.0f, 1e-3f);
+    // Zigzags of ±δ about -y, both senses in every cell with segments of equal length: the cell means lie
+    // along -y, so every segment is δ off and the RMS is δ (2e-3 rad: a cell may hold one more segment of
+    // one sense than the other, tilting its mean a little).
+    const float delta = 0.35f;
+    Strands z;
+    z.offsets.push_back(0);
+    for (int i = 0; i < 20; ++i) {
+        glm::vec3 p(0.05f * float(i), 0.0f, 0.0f);
+        for (int k = 0; k <= 400; ++k) {
+            z.points.push_back(p);
+            const float s = (k % 2 == 0) ? 1.0f : -1.0f;
+            p += 0.01f * glm::vec3(s * std::sin(delta), -std::cos(delta), 0.0f);
+        }
+        z.offsets.push_back(static_cast<std::uint32_t>(z.points.size()));
+    }
+    EXPECT_NEAR(strand_tangent_spread(z, 0.25f), delta, 2e-3f);
+    EXPECT_THROW(strand_tangent_spread(z, 0.0f), Error);
+    EXPECT_THROW(strand_tangent_spread(z, std::nanf("")), Error);
+}
+
 TEST(ShadowGrid, KeepsTheStrandsOpticalMass) {
     // Σ values · voxel³ = π λ · total strand length, exactly up to float rounding: every splat weight
     // sums to 1 and the grid has two voxels of margin on every side.
