@@ -122,7 +122,7 @@ glm::vec3 MarschnerFiber::S(const FiberFrame& frame, const glm::vec3& wi, const 
     float theta_i, phi_i, theta_o, phi_o;
     angles(frame, wi, theta_i, phi_i);
     angles(frame, wo, theta_o, phi_o);
-    const float theta_h = 0.5f * (theta_i + theta_o), theta_d = 0.5f * (theta_o - theta_i);
+    const float theta_d = 0.5f * (theta_o - theta_i);
     const float phi = phi_o - phi_i;
     const float cos_d = std::cos(theta_d);
     const float inv_cos2 = 1.0f / std::max(cos_d * cos_d, 1e-6f);
@@ -131,7 +131,7 @@ glm::vec3 MarschnerFiber::S(const FiberFrame& frame, const glm::vec3& wi, const 
     glm::vec3 s(0.0f);
     for (int lobe = 0; lobe < shading::kLobeCount; ++lobe) {
         // 000 eq. 6: S_t = M_t(θh) N_t(η, θd, φ) / cos² θd.
-        const float m = glsl::M_lobe(params_, lobe, theta_h);
+        const float m = glsl::M_lobe(params_, lobe, theta_i, theta_o);
         if (m < 1e-12f) continue;
         s += m * table_->lookup(lobe, eta_trt, theta_d, phi);
     }

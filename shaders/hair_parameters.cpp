@@ -98,6 +98,12 @@ Table make_table() {
                                            [](auto& h) -> auto& { return h.fibre.delta_eta_p; }));
     t.push_back(real_param<HairParameters>("d_b", "", 0.0, 1.0, "backward-scattering density factor d_b of dual scattering",
                                            [](auto& h) -> auto& { return h.fibre.d_b; }));
+    Param<HairParameters> longitudinal{"longitudinal", ParamKind::choice, "", 0, 0, false,
+                                       "M_t: energy-conserving (normalised over the incident angle) or 000's literal Gaussian",
+                                       {"normalised", "paper"}, {}, {}, {}};
+    longitudinal.get = [](const HairParameters& h, int) { return h.fibre.longitudinal >= 0.5f ? 1.0 : 0.0; };
+    longitudinal.set = [](HairParameters& h, int, double v) { h.fibre.longitudinal = v >= 0.5 ? 1.0f : 0.0f; };
+    t.push_back(longitudinal);
     t.push_back(int_param<HairParameters>("segments", 2, glsl::LIGHTING_MAX_SEGMENTS, "segments m of the linear quadrature",
                                           [](auto& h) -> auto& { return h.config.segments; }));
     t.push_back(flags_param<HairParameters>("lobes", lobe_names, "single-scattering lobes drawn",

@@ -56,7 +56,7 @@ struct HairParamsField {
     bool lo_exclusive;
     const char* unit;
 };
-inline constexpr std::array<HairParamsField, 12> kHairParamsFields = {{
+inline constexpr std::array<HairParamsField, 13> kHairParamsFields = {{
     {"eta", &HairParams::eta, true, "eta (index of refraction)", kMinEta, kMaxEta, true, ""},
     {"sigma_a", &HairParams::sigma_a, false, "sigma_a", 0.0f, kMaxSigmaA, false, "per unit fibre radius"},
     {"alpha_R", &HairParams::alpha_R, true, "alpha_R", -kMaxAlpha, kMaxAlpha, false, "rad"},
@@ -69,6 +69,7 @@ inline constexpr std::array<HairParamsField, 12> kHairParamsFields = {{
     {"w_c", &HairParams::w_c, true, "w_c", kMinLambda, kPiF, false, "rad"},
     {"delta_eta_p", &HairParams::delta_eta_p, true, "delta_eta_prime", kMinDeltaEtaPrime, kMaxDeltaEtaPrime, false, ""},
     {"d_b", &HairParams::d_b, true, "d_b", 0.0f, 1.0f, false, ""},
+    {"longitudinal", &HairParams::longitudinal, true, "longitudinal (0 energy-conserving, 1 paper)", 0.0f, 1.0f, false, ""},
 }};
 
 struct LightingConfigField {

@@ -42,6 +42,7 @@ HairParams linked_hair_params(float eta, glm::vec3 sigma_a, float alpha_R, float
     p.w_c = w_c;
     p.delta_eta_p = 0.3f;
     p.d_b = glsl::MS_DEFAULT_D_B;
+    p.longitudinal = 0.0f;  // energy-conserving
     return p;
 }
 

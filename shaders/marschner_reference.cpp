@@ -242,7 +242,7 @@ glm::dvec3 single_lobe(int lobe, const HairParams& p, double theta_o, double phi
                                      : inner_exact(lobe, p, p.eta, theta_d, lambda_p, dphi);
         acc += weight * inner;
     }
-    return acc * dt;
+    return acc * dt * double(glsl::M_norm(p, lobe, float(theta_o)));
 }
 
 glm::dvec3 single(const HairParams& p, double theta_o, double phi_o, double theta_j, double phi_j, double lambda_j) {
@@ -310,8 +310,9 @@ ZinkeTable zinke_table(const HairParams& p, int points) {
                 for (int i = 0; i < steps; ++i) {
                     const double to = lo + (i + 0.5) * dt;
                     const double c = std::cos(0.5 * (x - to));
+                    const double norm = p.longitudinal >= 0.5f ? 1.0 : 2.0 * double(glsl::M_norm(p, lobe, float(to)));
                     const double w = gauss_u(0.5 * (x + to), alpha, beta) * std::cos(to) * std::cos(x) /
-                                     std::max(c * c, 1e-12) * dt / (2.0 * kPi);  // 1/(2π): see zinke_lobe_a
+                                     std::max(c * c, 1e-12) * dt / (2.0 * kPi) * norm;  // 1/(2π): see zinke_lobe_a
                     glm::dvec3 mf, mb;
                     azimuthal_moments(lobe, p, 0.5 * (x - to), mf, mb);
                     f += w * mf;
@@ -372,7 +373,7 @@ glm::dvec3 ms_global(const HairParams& p, double theta_o, double phi_o, double t
                 if (lobe != glsl::LOBE_TRT) return std::abs(d) <= 0.5 * kPi ? 1.0 : 0.0;
                 return 0.5 * (std::erf((0.5 * kPi - d) / p.w_c) + std::erf((0.5 * kPi + d) / p.w_c));
             });
-            total += w * ng / kPi * dt;
+            total += w * ng / kPi * dt * double(glsl::M_norm(p, lobe, float(theta_o)));
         }
     }
     return total;

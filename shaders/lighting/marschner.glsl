@@ -18,6 +18,9 @@
 //   w_c        azimuthal width of the TRT caustic lobes (000 eq. 20; bandwidth λ)
 //   delta_eta_p  Δη', the range over which the caustic fades above η' = 2 (000 §4.2.4)
 //   d_b        backward-scattering density factor of dual scattering (000 eq. 4)
+//   longitudinal  0: energy-conserving M_t (the default): the Gaussian divided by its integral over θi for
+//              the given θo, so that ∫ M_t dθi = 1 (d'Eon et al. 2011, which 000 cites); 1: 000's literal
+//              M_t = g^u(θh), which integrates to ~2 over θi (docs/quality.md "Finding (energy)")
 #ifndef COIF_SHADERS_LIGHTING_MARSCHNER_GLSL
 #define COIF_SHADERS_LIGHTING_MARSCHNER_GLSL
 
@@ -36,6 +39,7 @@ struct HairParams {
     float w_c;
     float delta_eta_p;
     float d_b;
+    float longitudinal;
 };
 
 const int LOBE_R = 0;
@@ -115,9 +119,21 @@ COIF_FN float eta_star(float eta, float a, float cos_2phi_h) {
     return 0.5 * ((e1 + e2) + cos_2phi_h * (e1 - e2));
 }
 
-// M_t(θh) = g^u(θh; α_t, β_t) (000 eq. 7).
-COIF_FN float M_lobe(HairParams hp, int lobe, float theta_h) {
-    return gauss_u(theta_h, lobe_alpha(hp, lobe), lobe_beta(hp, lobe));
+// The factor that makes M_t energy-conserving for outgoing θo: 1 / ∫_{-π/2}^{π/2} M_t dθi. As a function of θi,
+// 000's M_t = g^u(θh) = g(θi; 2α - θo, 2β) / (√π β), whose integral over [-π/2, π/2] is
+// erf_diff((-π/2 - μ)/2β, (π/2 - μ)/2β) with μ = 2α - θo: 2 for a lobe well inside the range. It depends on θo
+// only, so every closed form over the light's θi keeps its shape and is scaled by it. 1 with longitudinal = 1
+// (000's literal form).
+COIF_FN float M_norm(HairParams hp, int lobe, float theta_o) {
+    if (hp.longitudinal >= 0.5) return 1.0;
+    float mu = 2.0 * lobe_alpha(hp, lobe) - theta_o;
+    float l = 2.0 * lobe_beta(hp, lobe);
+    return 1.0 / max(erf_diff((-COIF_HALF_PI - mu) / l, (COIF_HALF_PI - mu) / l), 1e-6);
+}
+
+// M_t(θi, θo) = g^u(θh; α_t, β_t) (000 eq. 7), θh = (θi + θo)/2, times M_norm(θo).
+COIF_FN float M_lobe(HairParams hp, int lobe, float theta_i, float theta_o) {
+    return gauss_u(0.5 * (theta_i + theta_o), lobe_alpha(hp, lobe), lobe_beta(hp, lobe)) * M_norm(hp, lobe, theta_o);
 }
 
 #endif

@@ -116,7 +116,7 @@ COIF_FN vec3 srbf_ms_global_lobe(int lobe, HairParams hp, LightingConfig cfg, ve
     float alpha = lobe_alpha(hp, lobe);
     float beta = lobe_beta(hp, lobe);
     GaussProduct gp = gauss_product(theta_j, lambda_f, 2.0 * alpha - theta_o, 2.0 * beta);
-    float scale = gp.c / (COIF_PI * lambda_f * beta);   // g^u(θi;θj,λf) · g(θi;2α-θo,2β)/(√πβ)
+    float scale = gp.c / (COIF_PI * lambda_f * beta) * M_norm(hp, lobe, theta_o);  // g^u(θi;θj,λf) · M_t
     float dphi = wrap_pi(phi_o - phi_j);
     int m = clamp(cfg.segments, 2, LIGHTING_MAX_SEGMENTS);
     float x_prev = -COIF_HALF_PI;
@@ -239,7 +239,9 @@ COIF_FN void zinke_lobe_a(int lobe, HairParams hp, LightingConfig cfg, vec4 f012
         float f = 0.0;
         if (s < ZINKE_SEGMENTS) {
             float c = cos(0.5 * (x - t));
-            f = cos(t) * cx / max(c * c, 1e-8);
+            // Energy-conserving M_t: each outgoing θo = t has its own normalisation, 2 M_norm(t) ≈ 1 against
+            // the 1/(2π) below (exactly 1 unless the lobe is cut by ±π/2).
+            f = cos(t) * cx / max(c * c, 1e-8) * (hp.longitudinal >= 0.5 ? 1.0 : 2.0 * M_norm(hp, lobe, t));
         }
         acc += gauss_linear_segment(x_prev, t, vec3(f_prev), vec3(f), mu, lambda).x;
         x_prev = t;

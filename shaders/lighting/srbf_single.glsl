@@ -374,7 +374,7 @@ COIF_FN vec3 srbf_single_lobe(int lobe, HairParams hp, LightingConfig cfg, vec4 
     float beta = lobe_beta(hp, lobe);
     // g(θi; θj, λj) · M_t(θh), M_t(θh) = 2 g^u(θi; 2α - θo, 2β) = g(θi; 2α - θo, 2β) / (√π β) (eq. 7).
     GaussProduct gp = gauss_product(theta_j, lambda_j, 2.0 * alpha - theta_o, 2.0 * beta);
-    float scale = gp.c / (COIF_SQRT_PI * beta);
+    float scale = gp.c / (COIF_SQRT_PI * beta) * M_norm(hp, lobe, theta_o);
     float dphi = wrap_pi(phi_o - phi_j);
     float cos_sum_phi = cos(phi_j + phi_o);
     int m = clamp(cfg.segments, 2, LIGHTING_MAX_SEGMENTS);

@@ -178,33 +178,113 @@ TEST(Reference, WithoutShadowsAnOccluderDoesNotDarkenTheFibre) {
     for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(unshadowed[k], alone[k]) << "channel " << k;
 }
 
+shading::HairParams paper_longitudinal(shading::HairParams p) {
+    p.longitudinal = 1.0f;
+    return p;
+}
+
 TEST(Reference, MarschnerWhiteFurnace) {
-    // A single fibre with σa = 0 under a constant unit environment. Two checks:
-    //  1. The rendered radiance equals the fibre's directional albedo ∫ S cos θi dωi computed by quadrature
-    //     of the same S (5 %: 20 000 paths, ≈1.5 % standard error on the spiky R/TRT lobes).
-    //  2. Energy: with σa = 0 the Marschner model as 000 writes it loses only the paths with more than one
-    //     internal reflection, but M_t(θh) is normalised in θh, not θi (000 eq. 7: M_t = 2 g^u(θi; …)), so its
-    //     albedo is about twice the energy of the R, TT and TRT paths; the stated bound is that the albedo
-    //     lies in [1.5, 2.05] (≈ 2 × (1 − the energy of the TRRT… paths, 4–10 % at η = 1.55)). This is a
-    //     property of the model of 000 (Marschner 2003), recorded here so that a change to it is noticed.
-    const MarschnerFiber fibre(clear_hair());
+    // A single fibre with σa = 0 under a constant unit environment; its directional albedo ∫ S cos θi dωi by
+    // quadrature (400 × 800 cells), and the path tracer's radiance at three θo (20 000 paths: ≈1.5 % standard
+    // error on the spiky R/TRT lobes; 5 %).
+    //  - Energy-conserving M_t (the default: ∫ M_t dθi = 1): R + TT + TRT carry the energy of the paths with
+    //    at most one internal reflection, so the albedo is below 1 by the TRRT… residual (4–10 % at η = 1.55,
+    //    more at grazing θd where Fresnel keeps more light inside), except for the geometric factor
+    //    cos²θi / cos²θd of 000 eq. 6, which is 1 only at the specular θi = −θo: the α shifts and widths move
+    //    the lobes off it. Measured 0.96, 1.009, 0.817 at θo = 0, 0.4, −0.8 and 1.097, 0.674 at ±1.3 (grazing:
+    //    the factor departs most, and the cut lobes' normalisation is largest). Bands stated: [0.8, 1.02] for
+    //    |θo| ≤ 0.8; [0.6, 1.12] at |θo| = 1.3.
+    //  - 000's literal M_t (longitudinal = paper): normalised in θh, so 2× in θi: the albedo lies in
+    //    [1.5, 2.05], and it is the energy-conserving one times 2 wherever no lobe is cut by θi = ±π/2.
     const FiberFrame f = fibre_frame_x();
+    const MarschnerFiber fibre(clear_hair());
+    const MarschnerFiber paper(paper_longitudinal(clear_hair()));
     const ReferenceEnvironment env = ReferenceEnvironment::constant(glm::vec3(1.0f));
     ReferenceSettings s;
     s.max_depth = 1;
     s.fiber_radius = 0.05f;
     s.progress = false;
     const ReferenceRenderer r(single_fibre(), env, fibre, s);
-    for (const float theta_o : {0.0f, 0.4f, -0.8f}) {
+    for (const float theta_o : {0.0f, 0.4f, -0.8f, 1.3f, -1.3f}) {
         const glm::vec3 wo = direction(theta_o, 0.7f, f);
         const glm::vec3 albedo = fiber_albedo(fibre, f, wo, 400);
-        const glm::vec4 traced = r.trace(5.0f * wo, -wo, 20000, 9);
-        std::printf("θo %+.1f: albedo (quadrature) %.4f, traced %.4f\n", theta_o, albedo.x, traced.x);
+        const glm::vec3 albedo_paper = fiber_albedo(paper, f, wo, 400);
+        std::printf("θo %+.1f: albedo %.4f %.4f %.4f, paper %.4f\n", theta_o, albedo.x, albedo.y, albedo.z, albedo_paper.x);
+        const bool grazing = std::abs(theta_o) > 1.0f;
         for (int k = 0; k < 3; ++k) {
-            EXPECT_NEAR(traced[k], albedo[k], 0.05 * albedo[k]) << "θo " << theta_o;
-            EXPECT_GT(albedo[k], 1.5f) << "θo " << theta_o;
-            EXPECT_LT(albedo[k], 2.05f) << "θo " << theta_o;
+            EXPECT_GT(albedo[k], grazing ? 0.6f : 0.8f) << "θo " << theta_o;
+            EXPECT_LT(albedo[k], grazing ? 1.12f : 1.02f) << "θo " << theta_o;
         }
+        if (std::abs(theta_o) < 1.0f) {
+            EXPECT_GT(albedo_paper.x, 1.5f) << "θo " << theta_o;
+            EXPECT_LT(albedo_paper.x, 2.05f) << "θo " << theta_o;
+            const glm::vec4 traced = r.trace(5.0f * wo, -wo, 20000, 9);
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(traced[k], albedo[k], 0.05 * albedo[k]) << "θo " << theta_o;
+        }
+    }
+}
+
+TEST(Reference, MarschnerBundleFurnaceStaysAtOrBelowOne) {
+    // The 40-fibre bundle of clear (σa = 0) Marschner fibres under a constant unit environment, light
+    // scattering between fibres without a depth limit: energy conservation means no pixel of the hair can
+    // exceed the environment, so the coverage-weighted mean stays ≤ 1 (+ 0.02, 4σ of 6 000 paths, as the
+    // isotropic furnace). Measured 0.58: each bounce loses the TRRT… residual and light leaves the bundle.
+    // 000's literal M_t gains energy at every bounce and must exceed it (> 1.2; measured 87 at 64 bounces:
+    // the 2× compounds, which is why multiple scattering made the reference so bright).
+    const ReferenceEnvironment env = ReferenceEnvironment::constant(glm::vec3(1.0f));
+    ReferenceSettings s;
+    s.samples_per_pixel = 16;
+    s.max_depth = 64;
+    s.fiber_radius = 0.02f;
+    s.alpha = true;
+    s.progress = false;
+    const auto mean = [&](const MarschnerFiber& fibre) {
+        const Image img = ReferenceRenderer(bundle(), env, fibre, s).render(camera_on(glm::vec3(0, 0.3f, 3), 32, 25));
+        glm::dvec3 sum(0.0);
+        double weight = 0;
+        for (int i = 0; i < 32 * 32; ++i) {
+            const float a = img.pixels[4 * i + 3];
+            for (int c = 0; c < 3; ++c) sum[c] += a * img.pixels[4 * i + c];
+            weight += a;
+        }
+        EXPECT_GT(weight, 50.0);
+        return sum / std::max(weight, 1e-9);
+    };
+    const glm::dvec3 conserving = mean(MarschnerFiber(clear_hair()));
+    const glm::dvec3 paper = mean(MarschnerFiber(paper_longitudinal(clear_hair())));
+    std::printf("bundle furnace: energy-conserving %.4f %.4f %.4f, paper %.4f\n", conserving.x, conserving.y, conserving.z, paper.x);
+    for (int c = 0; c < 3; ++c) EXPECT_LE(conserving[c], 1.02) << "channel " << c;
+    EXPECT_GT(paper.x, 1.2);
+}
+
+TEST(Reference, MarschnerScatteringIsReciprocal) {
+    // S(ωi, ωo) = S(ωo, ωi). 000's model is exactly reciprocal (M in θh, N in |θd| and φ); only the
+    // tabulated N_t's interpolation separates the two (0.5 %). The energy-conserving M_t divides by its
+    // integral over θi for the outgoing θo, which differs from the incoming one's where a lobe is cut by
+    // θ = ±π/2 (TRT first: centred at 2α_TRT − θo = 0.39 − θo rad, 0.52 wide): measured worst 7.6 % for
+    // |θ| ≤ 0.8 (bound 10 %) and 49 % for |θ| ≤ 1.4 (reported, not bounded): the price of d'Eon's
+    // normalisation, paid at grazing angles.
+    const FiberFrame f = fibre_frame_x();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (const bool conserving : {false, true}) {
+        shading::HairParams p = shading::default_hair_params();
+        if (!conserving) p = paper_longitudinal(p);
+        const MarschnerFiber fibre(p);
+        double worst = 0, worst_wide = 0;
+        for (int n = 0; n < 2000; ++n) {
+            const float limit = n < 1000 ? 0.8f : 1.4f;
+            const glm::vec3 wi = direction(limit * (2 * u(rng) - 1), 2 * kPi * u(rng), f);
+            const glm::vec3 wo = direction(limit * (2 * u(rng) - 1), 2 * kPi * u(rng), f);
+            const glm::vec3 a = fibre.S(f, wi, wo), b = fibre.S(f, wo, wi);
+            const float peak = std::max(a.x, b.x);
+            if (peak < 0.05f) continue;  // relative errors of near-zero values say nothing
+            const double d = std::abs(a.x - b.x) / peak;
+            (n < 1000 ? worst : worst_wide) = std::max(n < 1000 ? worst : worst_wide, d);
+        }
+        std::printf("%s: worst relative |S(i,o) - S(o,i)| %.4f for |θ| <= 0.8, %.4f for |θ| <= 1.4\n",
+                    conserving ? "energy-conserving" : "paper", worst, worst_wide);
+        EXPECT_LT(worst, conserving ? 0.10 : 0.005);
     }
 }
 

@@ -98,7 +98,7 @@ TEST(HairParameters, FieldListsMatchTheGlslStructs) {
         EXPECT_EQ(config[i].first, kLightingConfigFields[i].member.index() == 0 ? "int" : "bool") << config[i].second;
     }
     // Every field is in the list once: together the members cover the C++ struct's size.
-    EXPECT_EQ(sizeof(HairParams), 14 * sizeof(float));
+    EXPECT_EQ(sizeof(HairParams), 15 * sizeof(float));
 }
 
 TEST(HairParameters, WriteThenReadGivesTheSameStruct) {
