@@ -98,7 +98,7 @@ TEST(StrandRenderer, PixelsMatchTheCpuEvaluatorUnderOneNarrowLight) {
         std::printf("per fragment %d, multiple %d: %zu strand pixels, peak L_o %.3g, worst relative difference GPU vs CPU %.3g\n",
                     per_fragment, multiple, got_want.size(), peak, worst);
         EXPECT_GT(got_want.size(), 100u);  // the strand crosses most of the 128-px-wide image
-        EXPECT_GT(peak, 0.1);              // and the highlight is on it
+        EXPECT_GT(peak, 0.04);             // and the highlight is on it (0.060: 000's literal M_t gave twice that)
         // Same GLSL on both sides; the GPU runs llvmpipe's float transcendentals, bilinear fetches at 8-bit
         // sub-texel precision and stores RGBA16F (11 significant bits), and the fragment's point is found
         // here in float: 2 % (relative, or of 1 % of the peak where L_o is darker).

@@ -112,6 +112,7 @@ TEST(HairParameters, WriteThenReadGivesTheSameStruct) {
     b.fibre.beta_TT = 0.03f;
     b.fibre.delta_eta_p = 0.45f;
     b.fibre.d_b = 0.55f;
+    b.fibre.longitudinal = 1.0f;
     b.config.segments = 7;
     b.lobes = 5;
     b.multiple = false;
@@ -120,6 +121,9 @@ TEST(HairParameters, WriteThenReadGivesTheSameStruct) {
     EXPECT_TRUE(jb.contains("alpha_TRT_deg") && jb.contains("beta_TT_deg"));
     EXPECT_FALSE(jb.contains("alpha_TT_deg") || jb.contains("beta_TRT_deg")) << jb.dump();  // still linked
     EXPECT_TRUE(same(read(jb.dump()), b)) << jb.dump();
+    EXPECT_EQ(jb["longitudinal"], "paper");
+    EXPECT_EQ(write_params(a, table)["longitudinal"], "normalised");  // energy-conserving by default
+    EXPECT_THROW(set_hair_parameter(a, "longitudinal", "literal", "test"), Error);
     // Angles set from degrees, as a file or a slider sets them, come back exactly.
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> deg(-40.0, 40.0);
