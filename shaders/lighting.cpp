@@ -162,7 +162,7 @@ glm::vec3 LightingEvaluator::ms_global(float theta_o, float phi_o, float theta_j
 glm::vec3 LightingEvaluator::ms_local(float theta_o, float phi_o, float theta_j, float phi_j, float lambda_j,
                                       float sigma_f2) const {
     LutBinding b(lut_set_);
-    return glsl::srbf_ms_local(config_, params_.sigma_a, theta_o, phi_o, theta_j, phi_j, glsl::ms_lambda_f(lambda_j, sigma_f2));
+    return glsl::srbf_ms_local(params_, config_, theta_o, phi_o, theta_j, phi_j, glsl::ms_lambda_f(lambda_j, sigma_f2));
 }
 
 PointLighting LightingEvaluator::shade(const FibreFrame& frame, glm::vec3 view, std::span<const SrbfLight> lights,

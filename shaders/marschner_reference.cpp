@@ -379,7 +379,7 @@ glm::dvec3 ms_global(const HairParams& p, double theta_o, double phi_o, double t
     return total;
 }
 
-glm::dvec3 ms_local(const HairParams& /*params: baked into table*/, const ZinkeTable& table, double theta_o, double phi_o, double theta_j,
+glm::dvec3 ms_local(const HairParams& params, const ZinkeTable& table, double theta_o, double phi_o, double theta_j,
                     double phi_j, double lambda_j, double sigma_f2) {
     const double lambda_f = std::sqrt(lambda_j * lambda_j + 2.0 * std::max(sigma_f2, 0.0));
     const double dphi = wrap(phi_o - phi_j);
@@ -397,8 +397,13 @@ glm::dvec3 ms_local(const HairParams& /*params: baked into table*/, const ZinkeT
         const glm::dvec3 A = table.A_b_at(theta_d), D = table.Delta_b_at(theta_d), S = table.sigma_b_at(theta_d);
         for (int c = 0; c < 3; ++c) {
             const double lb = 2.0 * std::sqrt(2.0) * std::max(S[c], 1e-3);
-            acc[c] += gauss_u(ti, theta_j, lambda_f) * 2.0 * gauss_u(ti, 2.0 * D[c] - theta_o, lb) * 2.0 * A[c] * ci /
-                      std::max(cd * cd, 1e-12);
+            // The backward lobe 2 g^u(θi; 2Δ_b − θo, λb), divided by its θi integral when energy-conserving
+            // (srbf_multiple.glsl's header).
+            const double mu = 2.0 * D[c] - theta_o;
+            const double norm = params.longitudinal >= 0.5f
+                                    ? 1.0
+                                    : 1.0 / std::max(0.5 * (std::erf((0.5 * kPi - mu) / lb) - std::erf((-0.5 * kPi - mu) / lb)) * 2.0, 1e-6);
+            acc[c] += gauss_u(ti, theta_j, lambda_f) * 2.0 * gauss_u(ti, mu, lb) * norm * 2.0 * A[c] * ci / std::max(cd * cd, 1e-12);
         }
     }
     return acc * dt * azimuthal;

@@ -15,7 +15,9 @@
 //     as 1/cos θj, which diverges for a light along the fibre.
 //   - Zinke's backward lobe is a normalised Gaussian in θh with mean Δ̄_b and *standard deviation*
 //     σ̄_b (the shifts ᾱ and variances β̄² it is built from live in θh); 000 eq. 29 writes it in
-//     θi + θo. In θi it is 2 g^u(θi; 2Δ̄_b - θo, 2√2 σ̄_b).
+//     θi + θo. In θi it is 2 g^u(θi; 2Δ̄_b - θo, 2√2 σ̄_b), which, like 000's M_t, integrates to ~2 over θi;
+//     with the energy-conserving convention (HairParams::longitudinal = 0, marschner.glsl M_norm) it is
+//     divided by that integral for the given θo, so that the local lobe carries Ā_b and no more.
 //   - The variances β̄_f², β̄_b² average the lobes' variances β_t²/2 (our β is a bandwidth).
 //   - Eccentricity is not applied to multiple scattering (its η* depends on φi, which dual
 //     scattering averages out); the 1D tables use η.
@@ -152,8 +154,9 @@ COIF_FN void ms_theta_d_window(float theta_o, float theta_j, float lambda_f, OUT
 // 𝓜^L (000 eq. 29-31): the azimuthal factor (π - |φo - φj|)/π² (eq. 30) times a θi integral whose
 // Gaussian uses the means Δ̃_b, σ̃_b of Δ̄_b, σ̄_b over the light's spread (two fetches each into the
 // summed-area tables); then the linear quadrature of Ā_b(θd) cos θi / cos²θd, per colour channel.
-COIF_FN vec3 srbf_ms_local(LightingConfig cfg, vec3 sigma_a, float theta_o, float phi_o, float theta_j, float phi_j,
+COIF_FN vec3 srbf_ms_local(HairParams hp, LightingConfig cfg, float theta_o, float phi_o, float theta_j, float phi_j,
                            float lambda_f) {
+    vec3 sigma_a = hp.sigma_a;
     float dphi = wrap_pi(phi_o - phi_j);
     float azimuthal = (COIF_PI - abs(dphi)) / (COIF_PI * COIF_PI);
     float a;
@@ -168,6 +171,10 @@ COIF_FN vec3 srbf_ms_local(LightingConfig cfg, vec3 sigma_a, float theta_o, floa
         GaussProduct gp = gauss_product(theta_j, lambda_f, 2.0 * delta_mean[c] - theta_o, lambda_b);
         // 2/cos²θd (S_back) · g^u(θi;θj,λf) · 2 g^u(θi; 2Δ̃-θo, λb) / cos θi · cos θi ... see header
         float scale = 4.0 * azimuthal * gp.c / (COIF_PI * lambda_f * lambda_b);
+        if (hp.longitudinal < 0.5) {  // ∫ 2 g^u(θi; μ, λb) dθi over [-π/2, π/2] = erf_diff
+            float mu = 2.0 * delta_mean[c] - theta_o;
+            scale /= max(erf_diff((-COIF_HALF_PI - mu) / lambda_b, (COIF_HALF_PI - mu) / lambda_b), 1e-6);
+        }
         float x_prev = -COIF_HALF_PI;
         float f_prev = 0.0;
         float acc = 0.0;
@@ -196,7 +203,7 @@ COIF_FN vec3 srbf_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f
     vec3 g_sum = srbf_ms_global_lobe(LOBE_R, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_f) +
                   srbf_ms_global_lobe(LOBE_TT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_f) +
                   srbf_ms_global_lobe(LOBE_TRT, hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_f);
-    return g_sum + hp.d_b * srbf_ms_local(cfg, hp.sigma_a, theta_o, phi_o, theta_j, phi_j, lambda_f);
+    return g_sum + hp.d_b * srbf_ms_local(hp, cfg, theta_o, phi_o, theta_j, phi_j, lambda_f);
 }
 
 // ---- Zinke's dual-scattering terms from the circular-Gaussian N_t (000 eq. 32-33) -----------------

@@ -42,7 +42,7 @@ COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f012
                                     float phi_o, float theta_j, float phi_j, float lambda_j, float direct,
                                     float fibres) {
     vec3 ms = vec3(0.0);
-    if (direct > MS_NEGLIGIBLE) ms = direct * hp.d_b * srbf_ms_local(cfg, hp.sigma_a, theta_o, phi_o, theta_j, phi_j, lambda_j);
+    if (direct > MS_NEGLIGIBLE) ms = direct * hp.d_b * srbf_ms_local(hp, cfg, theta_o, phi_o, theta_j, phi_j, lambda_j);
     if (fibres > 0.0) {
         vec4 fw = fetch_ms_forward(theta_j, hp.sigma_a);
         vec3 T_f = exp(log(max(vec3(fw.x, fw.y, fw.z), vec3(1e-6))) * fibres);
