@@ -146,6 +146,23 @@ std::vector<std::vector<std::pair<int, double>>> box_weights(int n, int m, Measu
 
 }  // namespace
 
+EnvMap rotate_envmap_y(const EnvMap& map, float angle) {
+    if (!std::isfinite(angle)) throw Error::parameter("environment rotation", "the angle must be a finite number");
+    EnvMap out = map;
+    // Columns grow with azimuth towards −z from +x (centre column +x, quarter column −z), so turning the
+    // environment +x → −z moves content to lower columns: out(c) = map(c + s), s = angle / 2π · width.
+    const double s = double(angle) / (2.0 * kPi) * map.width;
+    const double whole = std::floor(s);
+    const int k = static_cast<int>(std::fmod(whole, double(map.width)));
+    const float f = static_cast<float>(s - whole);
+    for (int r = 0; r < map.height; ++r)
+        for (int c = 0; c < map.width; ++c) {
+            const int c0 = ((c + k) % map.width + map.width) % map.width, c1 = (c0 + 1) % map.width;
+            out.at(c, r) = (1.0f - f) * map.at(c0, r) + f * map.at(c1, r);
+        }
+    return out;
+}
+
 EnvMap downsample_envmap(const EnvMap& map, int width) {
     if (width % 2 != 0 || width < kMinEnvMapWidth || width > map.width)
         throw Error::parameter("downsample width", std::to_string(width) + " must be even and within " +

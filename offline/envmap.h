@@ -83,6 +83,11 @@ Image envmap_to_image(const EnvMap& map);
 // width = map.width returns a copy.
 EnvMap downsample_envmap(const EnvMap& map, int width);
 
+// The map turned by `angle` radians about +y (right-handed: +x toward −z, as rotate_srbf_lights_y): a
+// shift of every row by angle/2π of its width, linearly interpolated between columns (exact for multiples of
+// one column; the row sums, and so the energy, are kept). Throws coif::Error for a non-finite angle.
+EnvMap rotate_envmap_y(const EnvMap& map, float angle);
+
 // ∫ L(ω) dω over the sphere (per channel, radiance × sr), by the pixel sum.
 glm::dvec3 envmap_energy(const EnvMap& map);
 

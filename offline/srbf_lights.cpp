@@ -118,6 +118,7 @@ std::string srbf_lights_to_json(const SrbfLightSet& set) {
                        {"checksum", checksum_hex(set.source->checksum)},
                        {"width", set.source->width},
                        {"height", set.source->height}};
+        if (set.source->rotation_y_deg != 0) j["source"]["rotation_y_deg"] = set.source->rotation_y_deg;
     }
     if (set.fit) j["fit"] = srbf_fit_record_json(*set.fit);
     ojson lights = ojson::array();
@@ -148,6 +149,7 @@ SrbfLightSet srbf_lights_from_json(std::string_view text, const fs::path& source
         src.width = int(r.integer(r.member(s, "/source", "width"), "/source/width"));
         src.height = int(r.integer(r.member(s, "/source", "height"), "/source/height"));
         if (src.width <= 0 || src.height <= 0) r.fail("/source/width", "map size must be positive");
+        if (s.contains("rotation_y_deg")) src.rotation_y_deg = r.number(s["rotation_y_deg"], "/source/rotation_y_deg");
         set.source = src;
     }
     if (j.contains("fit")) {

@@ -49,6 +49,7 @@ struct SrbfSource {
     std::string file;                  // file name as given to the fit
     std::uint64_t checksum = 0;        // coif::checksum of the source file's bytes
     int width = 0, height = 0;         // source map size
+    double rotation_y_deg = 0;         // the map was turned by this about +y before the fit (coif env fit --rotate)
 };
 
 struct SrbfFitRecord {

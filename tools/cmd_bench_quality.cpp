@@ -349,9 +349,10 @@ void add_bench_quality(CLI::App& root) {
         const std::string params_arg = " --params " + quote(params_full.string());
         std::ostringstream radius_arg;
         if (settings.fiber_radius > 0) radius_arg << " --radius " << settings.fiber_radius;
-        std::ostringstream background_arg;  // both renderers draw over the same background
+        std::ostringstream both_args;  // what both renderers are given alike: background, light rotation
         if (!o->reference.background.empty())
-            background_arg << " --background " << settings.background.x << ' ' << settings.background.y << ' ' << settings.background.z;
+            both_args << " --background " << settings.background.x << ' ' << settings.background.y << ' ' << settings.background.z;
+        if (o->reference.rotate_lights_deg != 0) both_args << " --rotate-lights " << o->reference.rotate_lights_deg;  // both renderers
 
         std::map<std::string, ReferenceRun> references;  // by arguments: rows of one model share its reference
         std::map<std::string, RenderRun> renders;        // by arguments: the sparse rows share their render
@@ -370,7 +371,7 @@ void add_bench_quality(CLI::App& root) {
                      << " --max-depth " << (sc.lighting_only ? 1 : settings.max_depth)
                      << " --threads " << settings.threads << radius_arg.str() << (sc.reference_shadows ? "" : " --no-shadows")
                      << (sc.lighting_only ? " --alpha" : "");
-            ref_args << background_arg.str();
+            ref_args << both_args.str();
             auto ref_it = references.find(ref_args.str());
             if (ref_it == references.end()) {
                 ReferenceRun run;
@@ -397,7 +398,7 @@ void add_bench_quality(CLI::App& root) {
             const ReferenceRun& ref_run = ref_it->second;
 
             // The render (once per distinct set of arguments).
-            std::string render_args = std::string(camera_args) + background_arg.str() + " --env " + quote(sc.lighting_only ? lighting.single_render : lighting.render) +
+            std::string render_args = std::string(camera_args) + both_args.str() + " --env " + quote(sc.lighting_only ? lighting.single_render : lighting.render) +
                                       " --params " + quote((sc.lighting_only ? params_single : params_full).string());
             if (sc.renderer == Renderer::shells) {
                 if (!sc.fit_model.empty()) render_args += " --frame-strands " + quote(sc.fit_model);

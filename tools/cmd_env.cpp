@@ -14,6 +14,7 @@
 #include "offline/srbf_lights.h"
 #include "shaders/envmap.h"
 #include "tools/cli.h"
+#include "tools/scene_options.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -57,6 +58,7 @@ struct FitOptions {
     std::string preview;
     coif::SrbfFitSettings settings;
     float exposure = NAN;
+    double rotate_deg = 0;
     bool json = false;
 };
 
@@ -76,8 +78,9 @@ void fit_command(const FitOptions& o) {
         throw coif::Error::parameter("option --lights", std::to_string(o.settings.lights) + ": expected 1.." +
                                                             std::to_string(coif::kMaxSrbfLights));
 
+    const float turn = coif::cli::lights_rotation(o.rotate_deg);
     coif::EnvMapLoadInfo info;
-    const coif::EnvMap map = coif::load_envmap(o.map, &info);
+    const coif::EnvMap map = coif::rotate_envmap_y(coif::load_envmap(o.map, &info), turn);
     for (const std::string& w : info.warnings) std::fprintf(stderr, "coif: warning: %s\n", w.c_str());
 
     coif::SrbfFitSettings settings = o.settings;
@@ -93,7 +96,7 @@ void fit_command(const FitOptions& o) {
 
     coif::SrbfLightSet set;
     set.lights = result.lights;
-    set.source = coif::SrbfSource{fs::path(o.map).filename().string(), info.checksum, map.width, map.height};
+    set.source = coif::SrbfSource{fs::path(o.map).filename().string(), info.checksum, map.width, map.height, std::fmod(o.rotate_deg, 360.0)};
     set.fit = result.record;
     coif::write_srbf_lights(o.output, set);
 
@@ -172,7 +175,8 @@ void inspect_command(const std::string& file, const std::string& map_path, bool 
             doc["source"] = {{"file", set.source->file},
                              {"checksum", coif::checksum_hex(set.source->checksum)},
                              {"width", set.source->width},
-                             {"height", set.source->height}};
+                             {"height", set.source->height},
+                             {"rotation_y_deg", set.source->rotation_y_deg}};
         if (checksum_matches) doc["source_matches"] = *checksum_matches;
         if (set.fit) doc["fit"] = record_json(*set.fit);
         doc["light_list"] = lights;
@@ -180,10 +184,13 @@ void inspect_command(const std::string& file, const std::string& map_path, bool 
         return;
     }
     std::printf("%s  (%zu SRBF lights)\n", file.c_str(), set.lights.size());
-    if (set.source)
+    if (set.source) {
         std::printf("  source              %s  (%dx%d, checksum %s)%s\n", set.source->file.c_str(), set.source->width,
                     set.source->height, coif::checksum_hex(set.source->checksum).c_str(),
                     !checksum_matches ? "" : *checksum_matches ? "  matches the given map" : "  DIFFERS from the given map");
+        if (set.source->rotation_y_deg != 0) std::printf("  turned about +y    %g deg before the fit\n", set.source->rotation_y_deg);
+    }
+
     if (set.fit) print_record(*set.fit);
     std::printf("  total energy        (%.4g, %.4g, %.4g)  radiance x sr\n", energy.r, energy.g, energy.b);
     std::printf("\n    #   L (R, G, B)                        elev.   azim.   lambda  (deg)   energy\n");
@@ -273,6 +280,9 @@ void add_env(CLI::App& root) {
     fit->add_option("--exposure", fo->exposure,
                     "Preview exposure in stops (default: the map's log-average luminance brought to 0.18)");
     fit->add_option("--seed", fo->settings.seed, "Seed of the k-means++ initialisation");
+    fit->add_option("--rotate", fo->rotate_deg,
+                    "Turn the map by DEG degrees about +y (+x toward -z) before fitting, as coif render/reference "
+                    "--rotate-lights turn it (recorded in the file's source)");
     fit->add_option("--fit-width", fo->settings.fit_width,
                     "Width of the fit grid in pixels (the map is box-filtered to W x W/2; capped at the map's width)");
     fit->add_option("--supersampling", fo->settings.supersampling,

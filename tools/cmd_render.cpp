@@ -36,6 +36,7 @@ struct RenderOptions {
     bool per_fragment = false;
     bool alpha = false;
     std::vector<float> background;
+    double rotate_lights_deg = 0;
 };
 
 void add_render(CLI::App& root) {
@@ -57,6 +58,7 @@ void add_render(CLI::App& root) {
     o->scene.add_to(render);
     render->add_option("-o,--output", o->output, "Image to write (.png, .exr or .hdr)")->capture_default_str();
     coif::cli::add_background_option(render, o->background);
+    coif::cli::add_rotate_lights_option(render, o->rotate_lights_deg);
     render->add_option("--db", o->db, "HRIR database (coif db build); default: the cached default database");
     render->add_option("--env", o->env,
                        "Environment: SRBF lights JSON (coif env fit) or an equirectangular .exr/.hdr map (fitted with "
@@ -128,7 +130,8 @@ void add_render(CLI::App& root) {
                 settings.hair = coif::gl::read_shell_settings(o->params).hair;
             }
             std::string lights_label, label;
-            const std::vector<coif::SrbfLight> lights = coif::cli::load_render_lights(o->env, &lights_label);
+            const std::vector<coif::SrbfLight> lights = coif::rotate_srbf_lights_y(
+                coif::cli::load_render_lights(o->env, &lights_label), coif::cli::lights_rotation(o->rotate_lights_deg));
             const coif::Strands strands = o->scene.load_strands(&label);
             const coif::Camera camera = o->scene.camera_for(strands);
             auto context = coif::gl::Context::headless();
@@ -157,6 +160,7 @@ void add_render(CLI::App& root) {
         if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
         coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
+        inputs.lights = coif::rotate_srbf_lights_y(inputs.lights, coif::cli::lights_rotation(o->rotate_lights_deg));
         std::optional<coif::AbsorptionMap> absorption;
         if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.style.clusters.size());
         coif::gl::HairScene scene(

@@ -32,6 +32,7 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
     app->add_option("--env", env, "Equirectangular environment map (.exr, .hdr) lighting the hair, importance-sampled from its pixels");
     app->add_option("--lights", lights, "SRBF lights file (from `coif env fit`) lighting the hair instead of a map: Σ L_j G_j(ω)");
     app->add_option("--env-constant", env_constant, "Constant environment radiance R G B (the default lighting is 1 1 1)")->expected(3);
+    add_rotate_lights_option(app, rotate_lights_deg);
     hair.add_to(app);
     app->add_option("--spp", settings.samples_per_pixel, "Samples (camera paths) per pixel")->check(CLI::Range(1, kMaxReferenceSpp));
     app->add_option("--max-depth", settings.max_depth,
@@ -55,8 +56,9 @@ shading::HairParams ReferenceCliOptions::hair_params() const { return hair.setti
 ReferenceEnvironment ReferenceCliOptions::environment() const {
     const int given = int(!env.empty()) + int(!lights.empty()) + int(!env_constant.empty());
     if (given > 1) throw Error::parameter("options --env, --lights, --env-constant", "give at most one light source");
-    if (!env.empty()) return ReferenceEnvironment::from_map(load_envmap(env), env);
-    if (!lights.empty()) return ReferenceEnvironment::from_srbf(read_srbf_lights(lights).lights, lights);
+    const float turn = lights_rotation(rotate_lights_deg);
+    if (!env.empty()) return ReferenceEnvironment::from_map(rotate_envmap_y(load_envmap(env), turn), env);
+    if (!lights.empty()) return ReferenceEnvironment::from_srbf(rotate_srbf_lights_y(read_srbf_lights(lights).lights, turn), lights);
     return ReferenceEnvironment::constant(env_constant.empty() ? glm::vec3(1.0f) : rgb(env_constant, "--env-constant"));
 }
 

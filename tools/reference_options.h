@@ -18,6 +18,7 @@ struct ReferenceCliOptions {
     std::string env;                 // equirectangular .exr/.hdr map
     std::string lights;              // SRBF lights JSON (coif env fit)
     std::vector<float> env_constant; // R G B
+    double rotate_lights_deg = 0;    // the map or lights turned about +y
     // Hair: --params FILE and the shorthand flags (shading::default_hair_params unless given).
     HairCliOptions hair;
     // Path tracing.

@@ -21,6 +21,17 @@ void add_background_option(CLI::App* app, std::vector<float>& rgb) {
         ->expected(3);
 }
 
+void add_rotate_lights_option(CLI::App* app, double& degrees) {
+    app->add_option("--rotate-lights", degrees,
+                    "Turn the environment (map or lights) by DEG degrees about +y (right-handed: +x toward -z); the same "
+                    "number gives the same lighting in coif render, coif reference and coif env fit --rotate");
+}
+
+float lights_rotation(double degrees) {
+    if (!std::isfinite(degrees)) throw Error::parameter("option --rotate-lights", "must be a finite number of degrees");
+    return static_cast<float>(radians(std::fmod(degrees, 360.0)));
+}
+
 glm::vec3 background_color(const std::vector<float>& v) {
     if (v.empty()) return kDefaultBackground;
     if (v.size() != 3) throw Error::parameter("option --background", "needs three numbers R G B");

@@ -58,6 +58,11 @@ struct SceneOptions {
 void add_background_option(CLI::App* app, std::vector<float>& rgb);
 glm::vec3 background_color(const std::vector<float>& rgb);
 
+// --rotate-lights DEG: the environment (map or SRBF lights) turned about +y, right-handed (+x toward −z), for
+// render and reference alike; `lights_rotation` gives radians, throwing coif::Error for a non-finite value.
+void add_rotate_lights_option(CLI::App* app, double& degrees);
+float lights_rotation(double degrees);
+
 // --env: "" = the embedded default lights, *.json = a lights file, else a map fitted with 40 lights.
 std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* label);
 

@@ -62,6 +62,39 @@ TEST(EnvCli, FitWritesLightsAndPreviewAndInspectReadsThem) {
     EXPECT_EQ(run_coif("env inspect '" + (dir / "l.json").string() + "' --map '" + other.string() + "'").exit_code, 1);
 }
 
+TEST(EnvCli, RotationIsTheSameInFitRenderAndReference) {
+    // --rotate-lights turns the lights as a file of turned lights would (reference: bit-identical images, the
+    // same function), and `env fit --rotate` fits the turned map and records the turn.
+    const auto dir = coif::test::scratch_dir("env-cli-rotate");
+    coif::SrbfLightSet set;
+    set.lights = {{{40, 30, 20}, glm::normalize(glm::vec3(1, 0.3f, 0.2f)), 0.2f}};
+    coif::write_srbf_lights(dir / "l.json", set);
+    set.lights = coif::rotate_srbf_lights_y(set.lights, float(M_PI / 3));
+    coif::write_srbf_lights(dir / "l60.json", set);
+    const std::string common = " --width 24 --height 16 --spp 2 --max-depth 1 --threads 1 -o '";
+    ASSERT_EQ(run_coif("reference --lights '" + (dir / "l.json").string() + "' --rotate-lights 60" + common + (dir / "a.exr").string() + "'").exit_code, 0);
+    ASSERT_EQ(run_coif("reference --lights '" + (dir / "l60.json").string() + "'" + common + (dir / "b.exr").string() + "'").exit_code, 0);
+    EXPECT_EQ(coif::read_image(dir / "a.exr").pixels, coif::read_image(dir / "b.exr").pixels);
+    const auto bad = run_coif("reference --lights '" + (dir / "l.json").string() + "' --rotate-lights nan" + common + (dir / "c.exr").string() + "'");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find("--rotate-lights"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(dir / "c.exr"));
+    const std::string lines = " --preview-strands --width 32 --height 24 --samples 1 -o '";
+    ASSERT_EQ(run_coif("render --env '" + (dir / "l.json").string() + "' --rotate-lights 60" + lines + (dir / "d.exr").string() + "'").exit_code, 0);
+    ASSERT_EQ(run_coif("render --env '" + (dir / "l60.json").string() + "'" + lines + (dir / "e.exr").string() + "'").exit_code, 0);
+    EXPECT_EQ(coif::read_image(dir / "d.exr").pixels, coif::read_image(dir / "e.exr").pixels);
+
+    const fs::path map = write_map(dir, "two.exr");
+    const auto fit = run_coif("env fit '" + map.string() + "' --lights 2 --fit-width 32 --rotate 90 -o '" + (dir / "r.json").string() + "'");
+    ASSERT_EQ(fit.exit_code, 0) << fit.err;
+    const coif::SrbfLightSet r = coif::read_srbf_lights(dir / "r.json");
+    ASSERT_TRUE(r.source.has_value());
+    EXPECT_EQ(r.source->rotation_y_deg, 90.0);
+    // write_map's bright light at (1, 1, 0)/√2 turned by 90° about +y is at (0, 1, -1)/√2.
+    const coif::SrbfLight& bright = r.lights[0].L.x > r.lights[1].L.x ? r.lights[0] : r.lights[1];
+    EXPECT_GT(glm::dot(bright.omega, glm::normalize(glm::vec3(0, 1, -1))), 0.99f);
+}
+
 struct BadCase {
     std::string name;
     std::function<void(const fs::path&)> make;  // writes dir/"in.*"
