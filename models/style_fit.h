@@ -33,6 +33,13 @@
 //     ellipse axis end points at 9 values of t) is below macro_tolerance × the cluster's mean radius,
 //     it becomes an instance of that prototype (sharing its geometry and density).
 //
+// Strays (StrayReport): how far a cluster's envelope reaches where none of its strands are. Its outer
+// surface v = 1 is sampled on the (t, u) grid of 2·s_t + 1 rings × kStraySamplesU (placed as drawn); each sample's
+// distance to the nearest point of the cluster's own member strands, in units of the cluster's mean radius
+// √(A B) (× the placement's scale). An envelope that follows its strands keeps this near 1 (the ellipse holds
+// `coverage` of the crossings, so its rim is about one radius from the strands on the far side); a cluster
+// that sticks out where no hair is has samples several radii from any strand.
+//
 // Fitting error (FitError): every strand point is located in its own cluster's final envelope
 // (instances through their similarity transform): the share of points inside, the RMS distance
 // of the outside points to the envelope, and the share of strands assigned (members of a cluster
@@ -79,8 +86,22 @@ struct FitError {
     double assigned_share() const { return strands ? static_cast<double>(assigned) / strands : 0.0; }
 };
 
+inline constexpr int kStraySamplesU = 16;
+
+struct StrayReport {
+    double worst = 0;                  // the largest sample distance over every cluster, in cluster radii
+    std::size_t worst_cluster = 0;     // where it is
+    double worst_t = 0;
+    double median_cluster = 0;         // the median over clusters of each cluster's largest
+    std::size_t clusters = 0;          // clusters measured (those with member strands)
+};
+
+// The strays of `style` for `strands` in the style's coordinates with strand_cluster as in fitting_error.
+StrayReport stray_distances(const HairStyle& style, const Strands& strands, const std::vector<int>& strand_cluster);
+
 struct FitReport {
     FitError error;
+    StrayReport stray;
     std::vector<int> strand_cluster;   // cluster of every input strand (−1: none)
     std::vector<char> strand_crosses;  // 1 where the strand crosses ≥ 1 sector plane of its cluster
     glm::dmat3 rotation{1.0};          // applied to the file's coordinates

@@ -15,7 +15,11 @@
 #include "models/style_strands.h"
 #include "shaders/lighting.h"
 #include "tools/assets.h"
+#include "models/core/image_metrics.h"
+#include "offline/reference.h"
+#include "offline/reference_fiber.h"
 #include "tools/cli.h"
+#include "tools/compare_report.h"
 #include "tools/scene_options.h"
 
 namespace {
@@ -43,6 +47,53 @@ json error_json(const coif::FitError& e) {
             {"assigned_share", e.assigned_share()}};
 }
 
+json stray_json(const coif::StrayReport& s) {
+    return {{"worst_cluster_radii", s.worst},
+            {"worst_cluster", s.worst_cluster},
+            {"worst_t", s.worst_t},
+            {"median_cluster_radii", s.median_cluster},
+            {"clusters", s.clusters}};
+}
+
+// `style import --check`: the fitted style's sampled strands and the file's own (turned as the style was),
+// path-traced alike (single scattering with shadows under a constant sky: the silhouette and the shading of
+// the geometry, no multiple-scattering noise), compared with coif compare's appearance metrics.
+constexpr int kCheckWidth = 180, kCheckHeight = 120, kCheckSpp = 16;
+
+json check_json(const coif::AppearanceMetrics& m) {
+    return {{"mask_iou", coif::cli::metric_json(m.mask_iou)},
+            {"blurred_psnr_db", coif::cli::metric_json(m.blurred_psnr_db)},
+            {"blur_sigma_px", m.blur_sigma},
+            {"radiance_ratio", {m.radiance_ratio[0], m.radiance_ratio[1], m.radiance_ratio[2]}},
+            {"width", kCheckWidth},
+            {"height", kCheckHeight},
+            {"samples_per_pixel", kCheckSpp}};
+}
+
+coif::AppearanceMetrics fit_check(const coif::HairStyle& style, const coif::Strands& file, const glm::dmat3& rotation, bool quiet) {
+    coif::Strands original = file;
+    for (auto& p : original.points) p = glm::vec3(rotation * glm::dvec3(p));
+    const coif::Strands fitted = coif::sample_strands(style, coif::StrandSampling{});
+    const coif::StrandStats st = coif::strand_stats(original);
+    coif::OrbitView view;
+    view.azimuth = static_cast<float>(coif::radians(20.0));
+    view.elevation = static_cast<float>(coif::radians(10.0));
+    view.width = kCheckWidth;
+    view.height = kCheckHeight;
+    const coif::Camera camera = view.around(glm::vec3(st.bbox_min), glm::vec3(st.bbox_max));
+    coif::ReferenceSettings s;
+    s.samples_per_pixel = kCheckSpp;
+    s.max_depth = 1;
+    s.alpha = true;
+    s.progress = !quiet;
+    s.fiber_radius = coif::auto_fiber_radius(original);  // one radius for both: the file's
+    const coif::ReferenceEnvironment env = coif::ReferenceEnvironment::constant(glm::vec3(1.0f));
+    const coif::MarschnerFiber fibre(coif::shading::default_hair_params());
+    const coif::Image a = coif::ReferenceRenderer(original, env, fibre, s).render(camera);
+    const coif::Image b = coif::ReferenceRenderer(fitted, env, fibre, s).render(camera);
+    return coif::compare_images(a, b, {}, "the file's strands", "the fitted style's strands").appearance;
+}
+
 json counts_json(const coif::HairStyle& s) {
     const coif::StyleCounts c = coif::style_counts(s);
     return {{"clusters", c.clusters},
@@ -68,7 +119,7 @@ void add_style(CLI::App& root) {
         coif::FitOptions fit;
         std::vector<int> grid{8, 4};
         std::optional<double> gaussian_width;  // absent: automatic (models/style_fit.h)
-        bool no_orient = false, json = false;
+        bool no_orient = false, json = false, check = false;
     };
     auto io = std::make_shared<ImportOptions>();
     CLI::App* imp = style->add_subcommand(
@@ -106,6 +157,10 @@ void add_style(CLI::App& root) {
     imp->add_option("--seed", io->fit.seed, "Seed of the k-means++ initialisation")->capture_default_str();
     imp->add_option("--name", io->name, "Name written into the style (default: the model's file name)");
     imp->add_flag("--no-orient", io->no_orient, "Keep the file's axes even if the hair does not hang along -y");
+    imp->add_flag("--check", io->check,
+                  "Also path-trace the fitted style's strands and the file's own (coif reference, 180x120, 16 spp, single\n"
+                  "scattering under a constant sky, the same camera and fibre radius) and print the hair-mask IoU and the\n"
+                  "blurred PSNR between them (coif compare's appearance metrics): how closely the fit keeps the silhouette");
     coif::cli::add_json_flag(imp, io->json);
     coif::cli::examples(imp, "  coif style import ../shared/data/harolongo.data --clusters 64 -o harolongo64.json\n"
                              "  coif style import ../shared/data/Bangs_100.hair --clusters 32 -o bangs.json --json\n"
@@ -127,14 +182,18 @@ void add_style(CLI::App& root) {
         style.name = io->name.empty() ? fs::path(io->in).filename().string() + " (" + std::to_string(style.clusters.size()) + " clusters)" : io->name;
         style.units = "as in the source file";
         const coif::FitError& e = report.error;
+        const coif::StrayReport& sr = report.stray;
         const glm::dmat3& r = report.rotation;
+        std::optional<coif::AppearanceMetrics> check;
+        if (io->check) check = fit_check(style, strands, r, io->json);
         style.source = {{"file", fs::path(io->in).filename().string()},
                         {"strands", strands.strand_count()},
                         {"points", strands.points.size()},
                         {"rotation_applied", {{r[0][0], r[1][0], r[2][0]}, {r[0][1], r[1][1], r[2][1]}, {r[0][2], r[1][2], r[2][2]}}},
                         {"fit", {{"clusters_requested", fit.clusters}, {"coverage", fit.coverage}, {"macro_tolerance", fit.macro_tolerance},
                                  {"store_every", fit.store_every}, {"seed", fit.seed}}},
-                        {"fitting_error", error_json(e)}};
+                        {"fitting_error", error_json(e)},
+                        {"stray", stray_json(sr)}};
         coif::write_style(io->out, style);
         const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const coif::StyleCounts c = coif::style_counts(style);
@@ -145,6 +204,8 @@ void add_style(CLI::App& root) {
                                    {"gaussian_width", style.layout.gaussian_width},
                                    {"counts", counts_json(style)},
                                    {"fitting_error", error_json(e)},
+                                   {"stray", stray_json(sr)},
+                                   {"check", check ? check_json(*check) : nlohmann::json(nullptr)},
                                    {"seconds", {{"read", seconds_read}, {"clustering", report.seconds_clustering}, {"fitting", report.seconds_fitting},
                                                 {"error", report.seconds_error}, {"total", total}}}});
             return;
@@ -157,6 +218,13 @@ void add_style(CLI::App& root) {
         std::printf("  fitting error    %.2f %% of points inside their cluster's envelope; RMS distance of the others %.4g "
                     "(max %.4g, file units); %.2f %% of strands assigned\n",
                     100 * e.inside_fraction(), e.rms_outside, e.max_outside, 100 * e.assigned_share());
+        std::printf("  strays           envelope up to %.2f cluster radii from its own strands (cluster %zu at t = %.2f); median "
+                    "cluster %.2f\n",
+                    sr.worst, sr.worst_cluster, sr.worst_t, sr.median_cluster);
+        if (check)
+            std::printf("  check            fitted strands vs the file's, path-traced: hair-mask IoU %.3f, blurred PSNR %.2f dB "
+                        "(sigma %.0f px), radiance ratio %s\n",
+                        check->mask_iou, check->blurred_psnr_db, check->blur_sigma, coif::cli::format_rgb(check->radiance_ratio, 3).c_str());
         std::printf("  time             read %.2f s, clustering %.2f s, fitting %.2f s, error %.2f s, total %.2f s\n", seconds_read,
                     report.seconds_clustering, report.seconds_fitting, report.seconds_error, total);
         std::printf("wrote %s (%llu bytes)\n", io->out.c_str(), static_cast<unsigned long long>(fs::file_size(io->out)));

@@ -81,6 +81,25 @@ TEST(StyleFit, BangsHangsDownAndFits) {
     EXPECT_GE(sample_strands(again, so).strand_count(), 80u);
 }
 
+TEST(StyleFit, HarolongoFitKeepsItsSilhouetteWithoutStrays) {
+    // Issue 16's fit figures, through `style import --check --json` (harolongo, 64 clusters):
+    //  - strays: no envelope sample farther than 5 cluster radii from its own strands (measured 4.1; 9.1 before
+    //    the representative curve stopped at the members' 90th-percentile length), median cluster ≤ 1.5 (1.09);
+    //  - the fitted strands path-traced against the file's: blurred PSNR ≥ 26 dB (the issue's goal; measured
+    //    27.8) and mask IoU ≥ 0.93 (measured 0.942; the goal 0.95 is not reached yet).
+    COIF_SHARED_DATA(path, "harolongo.data");
+    const auto dir = test::scratch_dir("style-stray");
+    const test::RunResult r =
+        test::run_coif("style import '" + path.string() + "' --clusters 64 --check --json -o '" + (dir / "h.json").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_LE(doc["stray"]["worst_cluster_radii"].get<double>(), 5.0) << doc["stray"].dump();
+    EXPECT_LE(doc["stray"]["median_cluster_radii"].get<double>(), 1.5) << doc["stray"].dump();
+    EXPECT_GE(doc["check"]["blurred_psnr_db"].get<double>(), 26.0) << doc["check"].dump();
+    EXPECT_GE(doc["check"]["mask_iou"].get<double>(), 0.93) << doc["check"].dump();
+    std::filesystem::remove_all(dir);
+}
+
 TEST(StyleFit, ImportCommandPrintsTheFittingError) {
     COIF_SHARED_DATA(path, "Bangs_100.data");
     const auto dir = test::scratch_dir("style-import");

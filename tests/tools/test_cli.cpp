@@ -124,6 +124,23 @@ TEST(Cli, RenderAovsWritesEveryTermBesideTheImage) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, RenderWarnsWhenTheDatabaseDoesNotCoverTheStyle) {
+    // 100 CT-scanned strands fitted to 16 clusters: sparse sectors, most beyond the default database's
+    // held-out p95 distance (measured 48 %; > 25 % warns), said on stderr and in --json.
+    COIF_SHARED_DATA(path, "Curly_100.hair");
+    const auto dir = test::scratch_dir("cli-coverage");
+    ASSERT_EQ(run_coif("style import '" + path.string() + "' --clusters 16 -o '" + (dir / "c.json").string() + "'").exit_code, 0);
+    const auto r = run_coif("render --style '" + (dir / "c.json").string() + "' --width 48 --height 32 --samples 1 --json -o '" +
+                            (dir / "c.png").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("warning"));
+    EXPECT_THAT(r.err, HasSubstr("beyond the database's held-out p95"));
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_GT(doc["coverage"]["share_beyond_held_out_p95_nonempty"].get<double>(), 0.25);
+    EXPECT_EQ(doc["warnings"].size(), 1u);
+    fs::remove_all(dir);
+}
+
 TEST(Cli, ConvertDataToHairPreservesStrands) {
     COIF_SHARED_DATA(path, "Bangs_100.data");
     const auto dir = test::scratch_dir("cli-convert");
@@ -148,9 +165,15 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
     // --background sets what both renderers draw behind the hair (the shells here, the strand lines below;
     // the EXR is half float: 1e-3).
     for (const char* which : {"", " --preview-strands"}) {
-        const auto b = run_coif(std::string("render --width 64 --height 48 --samples 1 --background 0.3 0.1 0.2") + which + " -o '" +
-                                (dir / "b.exr").string() + "'");
+        const auto b = run_coif(std::string("render --width 64 --height 48 --samples 1 --json --background 0.3 0.1 0.2") + which +
+                                " -o '" + (dir / "b.exr").string() + "'");
         ASSERT_EQ(b.exit_code, 0) << b.err;
+        const auto doc = nlohmann::json::parse(b.out);
+        EXPECT_EQ(doc["width"], 64);
+        if (std::string(which).empty()) {  // the default style is covered by the default database: no warning
+            EXPECT_LT(doc["coverage"]["share_beyond_held_out_p95_nonempty"].get<double>(), 0.25);
+            EXPECT_TRUE(doc["warnings"].empty()) << doc.dump();
+        }
         const Image bg = read_image(dir / "b.exr");
         EXPECT_NEAR(bg.at(0, 0)[0], 0.3f, 1e-3f) << which;
         EXPECT_NEAR(bg.at(0, 0)[1], 0.1f, 1e-3f) << which;
