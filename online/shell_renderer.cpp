@@ -88,7 +88,7 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bo
     // widened lobes, in the lighting pass and in the per-fragment path alike.
     ShellSettings s = settings;
     if (!(s.tangent_spread <= 60.0f * float(kPi / 180.0))) throw Error::parameter("tangent_spread", "must be at most 60 degrees");
-    s.hair.fibre = shading::with_tangent_spread(s.hair.fibre, s.tangent_spread >= 0.0f ? s.tangent_spread : stats_.tangent_spread);
+    s.hair.fibre = shading::with_tangent_spread(s.hair.fibre, tangent_spread(s));
     ShellGpu& gpu = *m.gpu;
     if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
         throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));

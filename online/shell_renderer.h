@@ -111,6 +111,11 @@ public:
     FragmentListStats fragment_list_stats() const;
 
     const ShellStats& stats() const { return stats_; }
+    // The tangent spread (radians) the lighting uses with `settings`: settings.tangent_spread when ≥ 0, else the
+    // style's measured stats().tangent_spread.
+    float tangent_spread(const ShellSettings& settings) const {
+        return settings.tangent_spread >= 0.0f ? settings.tangent_spread : stats_.tangent_spread;
+    }
     // The lighting pass's output of the last draw: per cluster, per lighting row, the 27 sums
     // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator.
     std::vector<float> read_lighting() const;

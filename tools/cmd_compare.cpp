@@ -76,8 +76,7 @@ void add_compare(CLI::App& root) {
         co.exposure = o->exposure;
         co.pixels_per_degree = o->ppd;
         co.blur_sigma = o->blur;
-        if (!(co.blur_sigma > 0) || !std::isfinite(co.blur_sigma))
-            throw coif::Error::parameter("option --blur", "must be a blur sigma in pixels, > 0 (got " + std::to_string(co.blur_sigma) + ")");
+        coif::validate(co);
         if (!o->heatmap.empty()) coif::cli::lock_output(o->heatmap);
         const coif::Image a = coif::read_image(o->a);
         const coif::Image b = coif::read_image(o->b);

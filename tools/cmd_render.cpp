@@ -228,7 +228,7 @@ void add_render(CLI::App& root) {
                                    {"triangles", st.triangles},
                                    {"lights", scene.lights.size()},
                                    {"render_milliseconds", render_ms},
-                                   {"tangent_spread_deg", (settings.tangent_spread >= 0 ? settings.tangent_spread : st.tangent_spread) * 180.0 / coif::kPi},
+                                   {"tangent_spread_deg", coif::degrees(double(renderer.tangent_spread(settings)))},
                                    {"coverage", coverage_json},
                                    {"warnings", warnings}});
         const coif::gl::ShellTimings& t = renderer.timings();
@@ -243,7 +243,7 @@ void add_render(CLI::App& root) {
                          f * f, settings.samples);
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d; fibre tangents spread %.1f deg about the shells' (%s)\n", st.re_norm,
                      st.atlas_width, st.atlas_height,
-                     (settings.tangent_spread >= 0 ? settings.tangent_spread : st.tangent_spread) * 180.0 / coif::kPi,
+                     coif::degrees(double(renderer.tangent_spread(settings))),
                      settings.tangent_spread >= 0 ? "--params tangent_spread_deg" : "measured from the style's strands");
         if (settings.shadows) {
             double direct = 0, fibres = 0;

@@ -74,13 +74,10 @@ coif::AppearanceMetrics fit_check(const coif::HairStyle& style, const coif::Stra
     coif::Strands original = file;
     for (auto& p : original.points) p = glm::vec3(rotation * glm::dvec3(p));
     const coif::Strands fitted = coif::sample_strands(style, coif::StrandSampling{});
-    const coif::StrandStats st = coif::strand_stats(original);
-    coif::OrbitView view;
-    view.azimuth = static_cast<float>(coif::radians(20.0));
-    view.elevation = static_cast<float>(coif::radians(10.0));
+    coif::cli::SceneOptions view;  // coif render's and coif reference's default view, framing the file's strands
     view.width = kCheckWidth;
     view.height = kCheckHeight;
-    const coif::Camera camera = view.around(glm::vec3(st.bbox_min), glm::vec3(st.bbox_max));
+    const coif::Camera camera = view.camera_for(original);
     coif::ReferenceSettings s;
     s.samples_per_pixel = kCheckSpp;
     s.max_depth = 1;

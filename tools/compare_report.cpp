@@ -120,7 +120,7 @@ std::string format_rgb(const double v[3], int decimals) {
     std::string s;
     for (int c = 0; c < 3; ++c) {
         if (c) s += ' ';
-        s += std::isnan(v[c]) ? std::string("n/a") : format_metric(v[c], decimals);
+        s += format_metric(v[c], decimals);  // "n/a" for NaN
     }
     return s;
 }

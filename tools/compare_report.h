@@ -37,7 +37,7 @@ struct GateResult {
 std::vector<GateResult> check_gates(const CompareGates& gates, const CompareResult& r);
 nlohmann::json gates_json(const std::vector<GateResult>& results);
 
-// "R G B" of three numbers with `decimals` decimals ("n/a" for NaN).
+// "R G B" of three numbers, each as format_metric writes it ("n/a" for NaN).
 std::string format_rgb(const double v[3], int decimals);
 
 }  // namespace coif::cli

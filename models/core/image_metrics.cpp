@@ -321,20 +321,30 @@ Planes gaussian_blur(const Planes& p, double sigma) {
 
 // ───────────────────────── PSNR, SSIM ─────────────────────────
 
-double psnr(const Planes& a, const Planes& b, const HairMask& mask, double peak) {
-    check_same_size(a, b);
+namespace {
+
+// Mean squared difference over the three channels of the pixels where inside[i] (0 when there are none).
+double masked_mse(const Planes& a, const Planes& b, const std::vector<std::uint8_t>& inside) {
     double se = 0;
     size_t n = 0;
-    for (size_t i = 0; i < mask.inside.size(); ++i) {
-        if (!mask.inside[i]) continue;
+    for (size_t i = 0; i < inside.size(); ++i) {
+        if (!inside[i]) continue;
         for (int c = 0; c < 3; ++c) {
             const double d = double(a.c[c][i]) - double(b.c[c][i]);
             se += d * d;
         }
         n += 3;
     }
-    if (n == 0 || se == 0.0) return std::numeric_limits<double>::infinity();
-    return 10.0 * std::log10(peak * peak / (se / double(n)));
+    return n ? se / double(n) : 0.0;
+}
+
+}  // namespace
+
+double psnr(const Planes& a, const Planes& b, const HairMask& mask, double peak) {
+    check_same_size(a, b);
+    const double mse = masked_mse(a, b, mask.inside);
+    if (mse == 0.0) return std::numeric_limits<double>::infinity();
+    return 10.0 * std::log10(peak * peak / mse);
 }
 
 std::vector<float> ssim_map(const Planes& a, const Planes& b, double range) {
@@ -479,18 +489,7 @@ void mean_hair_radiance(const Image& im, const HairMask& how, const std::vector<
 
 // RMS over `both` and the three channels of p − G_σ * p.
 double detail_rms(const Planes& p, const std::vector<std::uint8_t>& both) {
-    const Planes low = gaussian_blur(p, kDetailSigma);
-    double se = 0;
-    size_t n = 0;
-    for (size_t i = 0; i < both.size(); ++i) {
-        if (!both[i]) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double d = double(p.c[c][i]) - double(low.c[c][i]);
-            se += d * d;
-        }
-        n += 3;
-    }
-    return n ? std::sqrt(se / double(n)) : 0.0;
+    return std::sqrt(masked_mse(p, gaussian_blur(p, kDetailSigma), both));
 }
 
 }  // namespace
@@ -530,16 +529,20 @@ AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairM
 
 // ───────────────────────── the comparison ─────────────────────────
 
-CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& o, const std::string& a_name,
-                             const std::string& b_name) {
-    if (a.width != b.width || a.height != b.height)
-        throw Error::parameter(a_name + ", " + b_name, "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
-                                                           " and " + std::to_string(b.width) + "x" + std::to_string(b.height));
+void validate(const CompareOptions& o) {
     if (!std::isfinite(o.exposure)) throw Error::parameter("option --exposure", "must be a finite number of stops");
     if (!(o.pixels_per_degree > 0) || !std::isfinite(o.pixels_per_degree))
         throw Error::parameter("option --ppd", "must be a positive number of pixels per degree");
     if (!(o.blur_sigma > 0) || !std::isfinite(o.blur_sigma) || o.blur_sigma > 1000)
         throw Error::parameter("option --blur", "must be a blur sigma in pixels, > 0 and at most 1000");
+}
+
+CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& o, const std::string& a_name,
+                             const std::string& b_name) {
+    if (a.width != b.width || a.height != b.height)
+        throw Error::parameter(a_name + ", " + b_name, "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                                           " and " + std::to_string(b.width) + "x" + std::to_string(b.height));
+    validate(o);
     for (const auto* im : {&a, &b}) {
         for (size_t i = 0; i < im->pixels.size(); ++i)
             if (!std::isfinite(im->pixels[i])) {

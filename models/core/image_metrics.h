@@ -178,6 +178,10 @@ struct CompareResult {
     AppearanceMetrics appearance;
 };
 
+// Throws coif::Error::parameter naming the option for a non-finite exposure, a pixels-per-degree that is not
+// positive, or a blur σ outside (0, 1000] (compare_images calls it; a command calls it before reading images).
+void validate(const CompareOptions& options);
+
 // Compares A (reference) and B (test). Throws coif::Error (naming a_name/b_name) if the sizes differ,
 // a pixel is NaN/Inf, the blur σ is not a positive number, no mask can be made, or the two images' hair
 // does not overlap (no pixel is hair in both, so there is no radiance to compare).
