@@ -14,10 +14,19 @@
 // single scattering plus d_b times the local (backward) multiple scattering: a lone fibre.
 //
 // 000 writes L = Σ_j L_j [T̃ 𝓜 + T_f (𝓜^G + d_b 𝓜^L)], which at n = 0 adds single scattering twice
-// (𝓜^G → 𝓜 as σ_f → 0); we keep Zinke's split. GLSL compiled also as C++.
+// (𝓜^G → 𝓜 as σ_f → 0); we keep Zinke's split.
+//
+// The light's power. 𝓜^G and 𝓜^L integrate S against the spread ψ_f, a normalised distribution (its
+// integral is 1 for every λ_j): they are per unit *power* (radiance × sr) of the light, while 𝓜 of
+// single scattering integrates L_j G_j itself and is per unit L_j. 000 eq. 3 multiplies ψ_f by L_j alone;
+// taken literally, a light's multiple scattering would not depend on its width, and a narrow light
+// (λ_j = 0.033, 0.0034 sr) would scatter as much as the whole sky. So the multiple-scattering part is
+// multiplied by the light's power per unit L_j, ∫ G_j dω = srbf_integral(λ_j) (shaders/envmap.glsl).
+// GLSL compiled also as C++.
 #ifndef COIF_SHADERS_LIGHTING_SRBF_SHADOWED_GLSL
 #define COIF_SHADERS_LIGHTING_SRBF_SHADOWED_GLSL
 
+#include "shaders/envmap.glsl"
 #include "shaders/lighting/srbf_multiple.glsl"
 
 const float MS_DEFAULT_D_F = 0.7;  // Zinke et al. 2008: density factor of forward scattering
@@ -37,7 +46,8 @@ COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, ve
 }
 
 // The multiple-scattering part (direct local term plus forward-scattered light) of one light, per
-// unit radiance; `direct` = T̃, `fibres` = n (see the header).
+// unit radiance L_j (the light's power srbf_integral(λ_j) times 𝓜^G, 𝓜^L; see the header);
+// `direct` = T̃, `fibres` = n.
 COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float d_f, float theta_o,
                                     float phi_o, float theta_j, float phi_j, float lambda_j, float direct,
                                     float fibres) {
@@ -50,7 +60,7 @@ COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f012
         if (max(max(share.x, share.y), share.z) > MS_NEGLIGIBLE)
             ms += share * srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, fibres * fw.w);
     }
-    return ms;
+    return srbf_integral(lambda_j) * ms;
 }
 
 #endif

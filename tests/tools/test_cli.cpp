@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/absorption_map.h"
+#include "models/core/camera.h"
 #include "models/core/image.h"
 #include "tests/common/run.h"
 
@@ -158,9 +159,15 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Image img = read_image(dir / "a.exr");
     ASSERT_EQ(img.width, 160);
-    // The default head of hair fills a good part of the frame: count pixels brighter than the background.
+    // The default head of hair fills a good part of the frame: count pixels that differ from the background
+    // (kDefaultBackground; dark brown hair is both darker and brighter than it) by more than 0.01.
     int hair = 0;
-    for (int i = 0; i < img.width * img.height; ++i) hair += img.pixels[size_t(i) * 4] > 0.08f;
+    for (int i = 0; i < img.width * img.height; ++i)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(img.pixels[size_t(i) * 4 + c] - kDefaultBackground[c]) > 0.01f) {
+                ++hair;
+                break;
+            }
     EXPECT_GT(hair, img.width * img.height / 20) << "no hair visible in the default render";
     // --background sets what both renderers draw behind the hair (the shells here, the strand lines below;
     // the EXR is half float: 1e-3).
