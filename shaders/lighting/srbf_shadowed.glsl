@@ -5,13 +5,19 @@
 //
 //   direct  = T̃ (𝓜 + d_b 𝓜^L(λ_j))                    light that reached the point unscattered
 //   scatter = d_f max(T_f − T̃, 0) (𝓜^G + d_b 𝓜^L)(λ_f)  light forward-scattered on the way
-//   T_f = ā_f(θ_j)^n,  σ̄_f² = n β̄_f²(θ_j)             (zinke_forward, tabulated in lut_ms_af)
+//   T_f = exp(−n (1 − ā_f(θ_j))),  σ̄_f² = n ā̄_f β̄_f²(θ_j)   (zinke_forward, tabulated in lut_ms_af)
 //
-// n is the number of fibres on the shadow path (the renderer's shadow pass: optical depth, one unit
-// per fibre met), T̃ the unoccluded fraction of the light's lobe (exp(−n) for one ray; the pass
-// averages over the lobe). ā_f is read at θd = θ_j: the fibres on the path are taken parallel to
-// this one (Zinke's assumption). d_f is Zinke's density factor (≈ 0.7). With n = 0 and T̃ = 1 this is
-// single scattering plus d_b times the local (backward) multiple scattering: a lone fibre.
+// n is the optical depth of the shadow path (the renderer's shadow pass: the *mean* number of fibres
+// a ray meets), T̃ the unoccluded fraction of the light's lobe (exp(−n) for one ray; the pass averages
+// over the lobe). Zinke counts the fibres in front, K, and writes T_f = ā_f^K; with K Poisson of mean
+// n (the same model that gives T̃ = P(K = 0) = e^−n), the expected forward transmittance is
+// E[ā_f^K] = exp(−n (1 − ā_f)), and the light that arrives was scattered E[K | arrived] = n ā_f times,
+// which sets its spread (ā̄_f: the mean of the three channels, since the spread is one number).
+// ā_f^n with the mean put for K is not that: for brown hair ā_f ≈ 0.36 < e^−1, so ā_f^n fell below
+// T̃ = e^−n at every depth and no forward-scattered light was left. ā_f is read at θd = θ_j: the
+// fibres on the path are taken parallel to this one (Zinke's assumption). d_f is Zinke's density
+// factor (≈ 0.7). With n = 0 and T̃ = 1 this is single scattering plus d_b times the local (backward)
+// multiple scattering: a lone fibre.
 //
 // 000 writes L = Σ_j L_j [T̃ 𝓜 + T_f (𝓜^G + d_b 𝓜^L)], which at n = 0 adds single scattering twice
 // (𝓜^G → 𝓜 as σ_f → 0); we keep Zinke's split.
@@ -55,10 +61,12 @@ COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f012
     if (direct > MS_NEGLIGIBLE) ms = direct * hp.d_b * srbf_ms_local(hp, cfg, theta_o, phi_o, theta_j, phi_j, lambda_j);
     if (fibres > 0.0) {
         vec4 fw = fetch_ms_forward(theta_j, hp.sigma_a);
-        vec3 T_f = exp(log(max(vec3(fw.x, fw.y, fw.z), vec3(1e-6))) * fibres);
+        vec3 a_f = vec3(fw.x, fw.y, fw.z);
+        vec3 T_f = exp(-fibres * (vec3(1.0) - a_f));
         vec3 share = d_f * max(T_f - vec3(direct), vec3(0.0));
+        float scatterings = fibres * (a_f.x + a_f.y + a_f.z) / 3.0;
         if (max(max(share.x, share.y), share.z) > MS_NEGLIGIBLE)
-            ms += share * srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, fibres * fw.w);
+            ms += share * srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, scatterings * fw.w);
     }
     return srbf_integral(lambda_j) * ms;
 }
