@@ -19,7 +19,7 @@
 // the view direction projected orthogonal to u (φo = 0) and w = u × v. Eccentric fibres (ecc_a ≠ 1) are
 // shaded with this view-aligned frame too, which is not the reference's horizontal one.
 //
-// What a pixel sees. The fragment's radiance is L_o = Σ_j L_j (𝓜_j + d_b 𝓜^L_j) — 000 eq. 2 without the
+// What a pixel sees. The fragment's radiance is L_o = Σ_j L_j (𝓜_j + ∫G_j d_b 𝓜^L_j) — 000 eq. 2 without the
 // fibre diameter D, as the reference renders a fibre of real width (offline/reference_fiber.h). Lines are
 // rasterized 1 px wide, so a fibre of radius r covers 2r/p of a pixel across (p = the pixel's footprint
 // at the fragment's view depth z: p = 2 z tan(fov/2) / height); the fragment's alpha is that coverage,

@@ -78,7 +78,7 @@ struct FibreFrame {
 
 struct PointLighting {
     glm::vec3 single{0.0f};    // Σ_j L_j T̃_j 𝓜_j
-    glm::vec3 multiple{0.0f};  // Σ_j L_j [T̃_j d_b 𝓜^L_j + d_f (T_f,j − T̃_j)⁺ (𝓜^G_j + d_b 𝓜^L_j)]
+    glm::vec3 multiple{0.0f};  // Σ_j L_j ∫G_j [T̃_j d_b 𝓜^L_j + d_f (T_f,j − T̃_j)⁺ (𝓜^G_j + d_b 𝓜^L_j)]
     glm::vec3 total() const { return single + multiple; }
 };
 

@@ -2,7 +2,7 @@
 // (strand_lighting.comp) and its per-fragment mode (strand_lines.frag with COIF_STRAND_PER_FRAGMENT):
 // the SRBF Marschner lighting of an unoccluded round fibre (shaders/lighting/srbf_shadowed.glsl with
 // T̃ = 1, n = 0),
-//   L_o = Σ_j L_j (𝓜_j + d_b 𝓜^L_j)        (000 eq. 2 without D; the multiple term when u_multiple)
+//   L_o = Σ_j L_j (𝓜_j + ∫G_j d_b 𝓜^L_j)   (000 eq. 2 without D; the multiple term when u_multiple)
 // in the frame u = tangent, v = the view direction projected orthogonal to u (φo = 0), w = u × v.
 #ifndef COIF_SHADERS_GL_STRAND_LIGHTING_GLSL
 #define COIF_SHADERS_GL_STRAND_LIGHTING_GLSL

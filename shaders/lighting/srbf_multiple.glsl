@@ -358,8 +358,9 @@ COIF_FN void zinke_terms(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45
 
 // What one fibre does to light passing forward through it (Zinke et al. 2008 §4, the shadow path of
 // 000 eq. 3 and 5): the forward attenuation ā_f(θd) = Σ_t ā_{f,t} and the ā_f-weighted mean
-// longitudinal variance β̄_f² (rad², per channel). n fibres on the path give T_f = ā_f^n and
-// σ̄_f² = n β̄_f² (the renderer's shadow pass supplies n).
+// longitudinal variance β̄_f² (rad², per channel). K fibres on the path give Zinke's T_f = ā_f^K and
+// σ̄_f² = K β̄_f²; srbf_shadowed.glsl takes the mean of both over a Poisson K of the shadow pass's
+// optical depth n.
 COIF_FN void zinke_forward(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float x, OUT(vec3) a_f,
                            OUT(vec3) beta_f2) {
     vec3 ab;
