@@ -42,8 +42,10 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
     atlas = make_texture_2d(GL_RGBA8, a.width, a.height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
     glTextureSubImage2D(atlas.id(), 0, 0, 0, a.width, a.height, GL_RGBA, GL_UNSIGNED_BYTE, a.texels.data());
 
-    density = make_texture_3d(GL_R32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
-    glTextureSubImage3D(density.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RED, GL_FLOAT, grid.values.data());
+    density = make_texture_3d(GL_RGBA32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(density.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RGBA, GL_FLOAT, grid.diagonal_xy.data());
+    density_off = make_texture_3d(GL_RG32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(density_off.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RG, GL_FLOAT, grid.off_diagonal.data());
 
     vertices = make_buffer(shells.vertices.data(), shells.vertices.size() * sizeof(ShellVertex));
     indices = make_buffer(shells.indices.data(), shells.indices.size() * sizeof(std::uint32_t));
@@ -100,17 +102,19 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 
 // ---- ShadowPass ------------------------------------------------------------------------------------
 
-double ShadowPass::run(const ShellGpu& gpu, float kappa, bool own_cluster) const {
+double ShadowPass::run(const ShellGpu& gpu, float fibre_width, bool own_cluster) const {
     glFinish();
     const auto t0 = Clock::now();
     const Program& p = program_;
     p.use();
     glBindTextureUnit(0, gpu.density.id());
     glUniform1i(p.uniform("u_density"), 0);
+    glBindTextureUnit(1, gpu.density_off.id());
+    glUniform1i(p.uniform("u_density_off"), 1);
     glUniform3fv(p.uniform("u_grid_min"), 1, &gpu.grid_origin.x);
     glUniform3fv(p.uniform("u_grid_extent"), 1, &gpu.grid_extent.x);
     glUniform1f(p.uniform("u_step"), gpu.voxel);
-    glUniform1f(p.uniform("u_kappa"), kappa);
+    glUniform1f(p.uniform("u_width"), fibre_width);
     glUniform1i(p.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(p.uniform("u_light_count"), gpu.light_count);
     glUniform1i(p.uniform("u_rays"), kShadowRays);

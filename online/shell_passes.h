@@ -4,7 +4,7 @@
 //   ShellGpu      the buffers and textures of online/shells/prepared_shells.h, record_atlas.h and shadow_grid.h,
 //                 the lights and their shadows, the lighting pass's output, the painted absorption;
 //   ShadowPass    T̃, n per lighting sample and light, marched through the density grid (decision 5,
-//                 shaders/gl/shell_shadow.comp); run only when the lights or κ change;
+//                 shaders/gl/shell_shadow.comp); run only when the lights or the fibre radius change;
 //   LightingPass  the SRBF lighting per lighting sample folded into the 9 Fourier sums of decision 1
 //                 (shaders/gl/shell_lighting.comp);
 //   ShellsPass    every cluster's layers, blended (sorted, unsorted) or appended to the fragment lists and
@@ -49,7 +49,7 @@ struct ShellGpu {
     int atlas_width = 1, atlas_height = 1, tiles_per_row = 1, views = 0, hrir_length = 0;
     std::array<glm::vec4, kAtlasParts> atlas_lo{}, atlas_scale{};
     float re_norm = 1;
-    Texture density;  // R32F shadow grid, zero outside
+    Texture density, density_off;  // the shadow grid's M: RGBA32F (xx, yy, zz, xy), RG32F (xz, yz); zero outside
     glm::vec3 grid_origin{0.0f}, grid_extent{0.0f};
     float voxel = 1;
     Texture lighting;  // RGBA32F, lighting_rows × clusters · kLightingTexels: the lighting pass's sums
@@ -66,7 +66,8 @@ class ShadowPass {
 public:
     // Writes gpu.shadows; returns its wall time in ms (glFinish before and after: it runs only when the lights
     // change, so the synchronisation costs nothing per frame, and llvmpipe's timer queries miss this dispatch).
-    double run(const ShellGpu& gpu, float kappa, bool own_cluster) const;
+    // fibre_width: the fibres' diameter 2r, so that τ = 2r ∫ projected length density is the fibres met.
+    double run(const ShellGpu& gpu, float fibre_width, bool own_cluster) const;
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};

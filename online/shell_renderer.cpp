@@ -28,10 +28,9 @@ struct ShellRenderer::Impl {
     ShellsPass shells_pass;
     PreparedShells shells;
     std::unique_ptr<ShellGpu> gpu;
-    float db_kappa = 0.6f;  // the database's κ (planar tracer)
     // The shadow pass's inputs when it last ran (it reruns only when they or the lights change).
     bool shadows_valid = false;
-    float shadows_kappa = -1.0f;
+    float shadows_radius = -1.0f;
     bool shadows_own = true;
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
 };
@@ -47,8 +46,14 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     m.shells = prepare_shells(style, satf, atlas.mean_alpha, orientation, lighting_rows_per_hsv);
     // The shadow grid (decision 5): the strands the reference renderer draws, voxelized.
     Strands strands = sample_strands(style, StrandSampling{});
-    const DensityGrid grid = voxelize_strands(strands, orientation, style.layout.gaussian_width, kShadowGridSize);
-    m.db_kappa = static_cast<float>(db.params().tracer.kappa);
+    const DensityGrid grid = voxelize_strands(strands, orientation, kShadowGridSize);
+    {
+        Strands turned;  // coif reference's radius is of the strands as it draws them: turned
+        turned.offsets = strands.offsets;
+        turned.points.reserve(strands.points.size());
+        for (const glm::vec3& q : strands.points) turned.points.push_back(orientation * q);
+        stats_.auto_fiber_radius = auto_fiber_radius(turned);
+    }
     m.gpu = std::make_unique<ShellGpu>(m.shells, atlas, grid, db.path().string());
 
     const PreparedShells& p = m.shells;
@@ -97,14 +102,15 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bo
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-    // Shadow pass: only when the lights or κ changed.
-    const float kappa = s.kappa_between >= 0.0f ? s.kappa_between : m.db_kappa;
+    // Shadow pass: only when the lights or the fibre radius changed.
+    const float radius = fiber_radius(s);
+    if (!(radius > 0.0f) || !std::isfinite(radius)) throw Error::parameter("fiber_radius", "must be finite and > 0");
     timings_.shadows_ms = 0;
     if (!floor_only && s.shadows && gpu.light_count > 0 &&
-        (!m.shadows_valid || m.shadows_kappa != kappa || m.shadows_own != s.own_cluster_shadow)) {
-        timings_.shadows_ms = m.shadow.run(gpu, kappa, s.own_cluster_shadow);
+        (!m.shadows_valid || m.shadows_radius != radius || m.shadows_own != s.own_cluster_shadow)) {
+        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, s.own_cluster_shadow);
         m.shadows_valid = true;
-        m.shadows_kappa = kappa;
+        m.shadows_radius = radius;
         m.shadows_own = s.own_cluster_shadow;
     }
 

@@ -24,9 +24,9 @@
 // Nothing per frame runs on the CPU beyond the sort and the draw calls.
 //
 // Shadows between clusters (DESIGN.md decision 5): the style's strands (models/style_strands.h)
-// voxelized once into an optical-density grid (online/shells/shadow_grid.h), a 3D texture; a compute pass
-// (shaders/gl/shell_shadow.comp) marches it from every lighting sample towards every light for T̃ and
-// the fibres met n, rerun only when the lights or κ change; the lighting pass reads them
+// voxelized once into a grid of their length by direction (online/shells/shadow_grid.h), two 3D textures; a
+// compute pass (shaders/gl/shell_shadow.comp) marches it from every lighting sample towards every light for T̃
+// and the fibres met n (fibres of the reference's radius), rerun only when the lights or the radius change; the lighting pass reads them
 // (shaders/lighting/srbf_shadowed.glsl).
 //
 // Painted absorption: an optional σa per cluster and lighting row (models/absorption_map.h) in a texture
@@ -67,6 +67,9 @@ struct ShellStats {
     // RMS angle (radians) of the style's strands about their local mean direction within a shadow-grid voxel
     // (strand_tangent_spread): the lighting's default ShellSettings::tangent_spread.
     float tangent_spread = 0;
+    // coif reference's auto fibre radius of the same strands as oriented (models/strands.h auto_fiber_radius):
+    // the radius the shadows between clusters count unless ShellSettings::fiber_radius sets one.
+    float auto_fiber_radius = 0;
 };
 
 // Of the last draw, milliseconds: with ShellSettings::timed, wall-clock times of each pass between glFinish
@@ -115,6 +118,11 @@ public:
     // style's measured stats().tangent_spread.
     float tangent_spread(const ShellSettings& settings) const {
         return settings.tangent_spread >= 0.0f ? settings.tangent_spread : stats_.tangent_spread;
+    }
+    // The fibre radius the shadows between clusters count with `settings`: settings.fiber_radius when > 0, else
+    // stats().auto_fiber_radius.
+    float fiber_radius(const ShellSettings& settings) const {
+        return settings.fiber_radius > 0.0f ? settings.fiber_radius : stats_.auto_fiber_radius;
     }
     // The lighting pass's output of the last draw: per cluster, per lighting row, the 27 sums
     // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator.

@@ -99,8 +99,9 @@ void add_render(CLI::App& root) {
                      "black: they add up to the image over black) and OUT.shadow (the unoccluded fraction of the light "
                      "times the within-cluster shadow, as coverage-weighted grey)");
     render->add_option("--radius", o->radius,
-                       "Strand lines: fibre radius in scene units, drawn as pixel coverage 2r/pixel (0 = the reference's auto "
-                       "radius, 1e-3 of the strands' bounding-box diagonal)")
+                       "Fibre radius in scene units, as coif reference --radius: the strand lines' pixel coverage 2r/pixel, and "
+                       "the fibres that the shells' shadows between clusters count (the --params key fiber_radius; 0 = the "
+                       "reference's auto radius, 1e-3 of the strands' bounding-box diagonal)")
         ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
     render->add_flag("--per-fragment", o->per_fragment,
                      "Strand lines: evaluate the lighting at every fragment, not at the strand points (exact, ~50x slower)");
@@ -176,6 +177,7 @@ void add_render(CLI::App& root) {
         coif::gl::ShellSettings settings;
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
+        if (o->radius > 0) settings.fiber_radius = o->radius;
         settings.background = coif::cli::background_color(o->background);
         if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
@@ -254,9 +256,10 @@ void add_render(CLI::App& root) {
             }
             const double n = std::max<std::size_t>(1, sh.size());
             std::fprintf(stderr,
-                         "shadows between clusters: grid %dx%dx%d of %.3g (%zu strands), pass %.1f ms; over %zu "
+                         "shadows between clusters: grid %dx%dx%d of %.3g (%zu strands of radius %.3g), pass %.1f ms; over %zu "
                          "samples x lights: mean unoccluded fraction %.3f, mean fibres met %.2f\n",
-                         st.grid_x, st.grid_y, st.grid_z, st.voxel, st.shadow_strands, renderer.timings().shadows_ms,
+                         st.grid_x, st.grid_y, st.grid_z, st.voxel, st.shadow_strands, double(renderer.fiber_radius(settings)),
+                         renderer.timings().shadows_ms,
                          sh.size(), direct / n, fibres / n);
         }
         if (settings.compositing == coif::gl::Compositing::exact) {

@@ -45,7 +45,8 @@ void ReferenceCliOptions::add_to(CLI::App* app) {
     app->add_option("--seed", settings.seed, "Random seed; the same seed gives the same image on any thread count");
     app->add_option("--threads", settings.threads, "Worker threads (0 = every hardware thread)")->check(CLI::Range(0, coif::kMaxThreads));
     app->add_option("--radius", settings.fiber_radius,
-                    "Fibre radius in scene units (0 = auto: 1e-3 of the strands' bounding-box diagonal, ~0.8 px at the default framing)");
+                    "Fibre radius in scene units (0 = the --params key fiber_radius if given, else auto: 1e-3 of the strands' "
+                    "bounding-box diagonal, ~0.8 px at the default framing)");
     add_background_option(app, background);
     app->add_flag("--background-env", background_env, "Show the environment where no fibre is hit");
     app->add_flag("--alpha", settings.alpha, "Write straight-alpha RGBA: A = fibre coverage, RGB = hair colour alone (no background)");
@@ -64,6 +65,8 @@ ReferenceEnvironment ReferenceCliOptions::environment() const {
 
 ReferenceSettings ReferenceCliOptions::reference_settings() const {
     ReferenceSettings s = settings;
+    // --radius, else the parameters file's fiber_radius (the radius the shells' shadows count), else auto.
+    if (s.fiber_radius == 0) s.fiber_radius = hair.settings().fiber_radius;
     s.background = background_color(background);
     s.background_env = background_env;
     validate(s);

@@ -7,29 +7,41 @@
 #include <limits>
 
 #include "models/core/error.h"
-#include "models/core/units.h"
 
 namespace coif {
 
-float DensityGrid::sample(glm::vec3 p) const {
+float projected_length_density(glm::vec4 m, glm::vec2 o, glm::vec3 w) {
+    const float trace = m.x + m.y + m.z;
+    const float along = m.x * w.x * w.x + m.y * w.y * w.y + m.z * w.z * w.z + 2.0f * (m.w * w.x * w.y + o.x * w.x * w.z + o.y * w.y * w.z);
+    return std::sqrt(std::max(trace * (trace - along), 0.0f));
+}
+
+float DensityGrid::length_density(int x, int y, int z) const {
+    const glm::vec4 m = diagonal_xy[index(x, y, z)];
+    return m.x + m.y + m.z;
+}
+
+float DensityGrid::projected(glm::vec3 p, glm::vec3 omega) const {
     const glm::vec3 g = (p - origin) / voxel - 0.5f;
     const glm::ivec3 i0 = glm::ivec3(glm::floor(g));
     const glm::vec3 f = g - glm::vec3(i0);
-    float sum = 0.0f;
+    glm::vec4 m(0.0f);
+    glm::vec2 o(0.0f);
     for (int c = 0; c < 8; ++c) {
         const glm::ivec3 i = i0 + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
         if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, dims))) continue;
         const float w = ((c & 1) ? f.x : 1 - f.x) * ((c & 2) ? f.y : 1 - f.y) * ((c & 4) ? f.z : 1 - f.z);
-        sum += w * at(i.x, i.y, i.z);
+        m += w * diagonal_xy[index(i.x, i.y, i.z)];
+        o += w * off_diagonal[index(i.x, i.y, i.z)];
     }
-    return sum;
+    return projected_length_density(m, o, omega);
 }
 
 float DensityGrid::integrate(glm::vec3 p, glm::vec3 d, float length, float step) const {
     const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
     const float h = length / n;
     double sum = 0;
-    for (int k = 0; k < n; ++k) sum += sample(p + d * ((k + 0.5f) * h));
+    for (int k = 0; k < n; ++k) sum += projected(p + d * ((k + 0.5f) * h), d);
     return static_cast<float>(sum * h);
 }
 
@@ -63,10 +75,8 @@ float strand_tangent_spread(const Strands& strands, float cell) {
     return weight > 0 ? static_cast<float>(std::sqrt(angle2 / weight)) : 0.0f;
 }
 
-DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, double gaussian_width, int max_dim) {
+DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim) {
     if (strands.points.empty()) throw Error::parameter("shadow grid", "the style gives no strands to voxelize");
-    if (!(gaussian_width > 0) || !std::isfinite(gaussian_width))
-        throw Error::parameter("shadow grid", "the strand Gaussian width must be finite and > 0");
     if (max_dim < 8 || max_dim > 512) throw Error::parameter("shadow grid", "voxels along the longest axis must be 8..512");
     std::vector<glm::vec3> p(strands.points.size());
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
@@ -81,9 +91,15 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
     g.voxel = longest / static_cast<float>(max_dim - 4);
     g.dims = glm::min(glm::ivec3(glm::ceil(size / g.voxel)) + 4, glm::ivec3(max_dim));
     g.origin = 0.5f * (lo + hi) - 0.5f * g.extent();
-    g.values.assign(static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z, 0.0f);
-    const double scale = kPi * gaussian_width / (static_cast<double>(g.voxel) * g.voxel * g.voxel);
-    const auto splat = [&](glm::vec3 q, float length) {
+    const std::size_t voxels = static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z;
+    g.diagonal_xy.assign(voxels, glm::vec4(0.0f));
+    g.off_diagonal.assign(voxels, glm::vec2(0.0f));
+    const float per_volume = 1.0f / (g.voxel * g.voxel * g.voxel);
+    // One sub-segment of length `length` along the unit tangent t at q: ℓ t tᵀ / V spread over 8 voxels.
+    const auto splat = [&](glm::vec3 q, glm::vec3 t, float length) {
+        const float l = length * per_volume;
+        const glm::vec4 m = l * glm::vec4(t.x * t.x, t.y * t.y, t.z * t.z, t.x * t.y);
+        const glm::vec2 o = l * glm::vec2(t.x * t.z, t.y * t.z);
         const glm::vec3 f0 = (q - g.origin) / g.voxel - 0.5f;
         const glm::ivec3 i0 = glm::ivec3(glm::floor(f0));
         const glm::vec3 f = f0 - glm::vec3(i0);
@@ -91,15 +107,18 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
             const glm::ivec3 i = i0 + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
             if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, g.dims))) continue;
             const float w = ((c & 1) ? f.x : 1 - f.x) * ((c & 2) ? f.y : 1 - f.y) * ((c & 4) ? f.z : 1 - f.z);
-            g.values[(static_cast<std::size_t>(i.z) * g.dims.y + i.y) * g.dims.x + i.x] += static_cast<float>(w * length * scale);
+            g.diagonal_xy[g.index(i.x, i.y, i.z)] += w * m;
+            g.off_diagonal[g.index(i.x, i.y, i.z)] += w * o;
         }
     };
     for (std::size_t s = 0; s + 1 < strands.offsets.size(); ++s)
         for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
             const glm::vec3 a = p[k], b = p[k + 1];
             const float len = glm::distance(a, b);
+            if (!(len > 0)) continue;
+            const glm::vec3 t = (b - a) / len;
             const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5f * g.voxel))));
-            for (int q = 0; q < n; ++q) splat(a + (b - a) * ((q + 0.5f) / n), len / n);
+            for (int q = 0; q < n; ++q) splat(a + (b - a) * ((q + 0.5f) / n), t, len / n);
         }
     return g;
 }

@@ -2,12 +2,14 @@
 // The hair's optical density on a voxel grid, for the shell renderer's shadows between clusters
 // (DESIGN.md decision 5; docs/renderer.md says why a grid and what it costs).
 //
-// Value of a voxel: the optical depth per unit length at κ = 1 of the SATF model. A strand is a
-// Gaussian of peak 1 and width λ in the plane across it (∫ρ dA = πλ²) and the planar ray tracer
-// accumulates κ ρ / λ per unit of path (offline/planar_tracer.h), so ℓ of strand per volume V gives
-// ρ̄ = πλ² ℓ / V and an optical depth per unit length of π λ ℓ / V (× κ). One unit of optical depth
-// is about one strand met (a ray through a strand's centre collects κ√π ≈ 1.06 at κ = 0.6), which is
-// how dual scattering's fibre count n reads it (shaders/lighting/srbf_shadowed.glsl).
+// A voxel holds the strands' length per unit volume, by direction: the second moment M = Σ ℓ t tᵀ / V of the
+// unit tangents t of the ℓ of strand in a voxel of volume V (6 numbers; its trace is the length density).
+// A ray along ω crosses fibres of radius r at the rate 2r · Σ ℓ |sin ψ| / V per unit length (ψ the angle
+// between ω and the fibre), the expected number of fibres met, exactly as `coif reference`'s cylinders of
+// radius r meet it; the grid gives Σ ℓ |sin ψ| / V as √(tr M · (tr M − ωᵀ M ω)), which is exact for the
+// fibres of a voxel that are parallel and, by Jensen, at most 4 % high for isotropic ones (√(2/3) against π/4).
+// docs/quality.md ("The shadows count the reference's fibres") says why this replaced the SATF model's
+// optical depth κ π λ ℓ / V, 2.2× the fibres' cross-section.
 //
 // Strands come from the style's densities (models/style_strands.h, the strands the reference
 // renderer draws), turned by `orientation`; each segment's length is split into sub-segments no
@@ -25,14 +27,24 @@ struct DensityGrid {
     glm::ivec3 dims{0};
     glm::vec3 origin{0.0f};   // world position of the grid's corner (voxel (0,0,0)'s low corner)
     float voxel = 1.0f;       // edge length, world units
-    std::vector<float> values;  // x fastest; optical depth per unit length at κ = 1
+    // x fastest; M's diagonal (xx, yy, zz) and xy in `diagonal_xy`, (xz, yz) in `off_diagonal`: per unit volume
+    std::vector<glm::vec4> diagonal_xy;
+    std::vector<glm::vec2> off_diagonal;
     glm::vec3 extent() const { return glm::vec3(dims) * voxel; }
-    float at(int x, int y, int z) const { return values[(static_cast<std::size_t>(z) * dims.y + y) * dims.x + x]; }
-    // Trilinear value at a world point (voxel centres at origin + (i + ½) voxel; 0 outside), as GL samples it.
-    float sample(glm::vec3 p) const;
-    // ∫ value ds along p + s d, s ∈ [0, length], midpoint rule with steps of `step`.
+    std::size_t index(int x, int y, int z) const { return (static_cast<std::size_t>(z) * dims.y + y) * dims.x + x; }
+    // The length density tr M of a voxel.
+    float length_density(int x, int y, int z) const;
+    // Trilinear M at a world point (voxel centres at origin + (i + ½) voxel; 0 outside), as GL samples it, and
+    // the projected length density √(tr M (tr M − ωᵀMω)) it gives along the unit direction ω.
+    float projected(glm::vec3 p, glm::vec3 omega) const;
+    // ∫ projected(·, d) ds along p + s d, s ∈ [0, length], midpoint rule with steps of `step`: the fibres of
+    // radius r met are 2r times this.
     float integrate(glm::vec3 p, glm::vec3 d, float length, float step) const;
 };
+
+// √(tr M (tr M − ωᵀMω)) for M given as (xx, yy, zz, xy) and (xz, yz), the formula shaders/gl/shell_shadow.comp
+// repeats (it is two lines; a test compares the GPU's march with integrate()).
+float projected_length_density(glm::vec4 diagonal_xy, glm::vec2 off_diagonal, glm::vec3 omega);
 
 // The RMS angle (radians) between each strand segment and the mean direction of the segments in its cell
 // (cubes of edge `cell`, segments by their midpoints, weighted by length): how far fibres stray from the
@@ -40,7 +52,7 @@ struct DensityGrid {
 // Segments keep their root → tip sense, so hair flowing one way through a cell has a defined mean.
 float strand_tangent_spread(const Strands& strands, float cell);
 
-// Throws coif::Error::parameter on an empty strand set, λ <= 0 or max_dim outside 8..512.
-DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, double gaussian_width, int max_dim);
+// Throws coif::Error::parameter on an empty strand set or max_dim outside 8..512.
+DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim);
 
 }  // namespace coif

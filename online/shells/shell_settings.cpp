@@ -62,11 +62,12 @@ ParamTable<ShellSettings> make_table() {
                                     [](auto& s) -> auto& { return s.tangent_spread; });
     spread.written = [](const S& s) { return s.tangent_spread >= 0.0f; };
     t.push_back(spread);
-    Param<S> kappa_between = real_param<S>("kappa_between", "per unit density per lambda of path", 0.0, 100.0,
-                                           "kappa of the shadow pass (absent: the database's)",
-                                           [](auto& s) -> auto& { return s.kappa_between; });
-    kappa_between.written = [](const S& s) { return s.kappa_between >= 0.0f; };
-    t.push_back(kappa_between);
+    Param<S> radius = real_param<S>("fiber_radius", "scene units", 0.0, 100.0,
+                                    "radius of the fibres the shadows between clusters count (0 or absent: coif reference's "
+                                    "auto radius, 1e-3 of the strands' bounding-box diagonal)",
+                                    [](auto& s) -> auto& { return s.fiber_radius; });
+    radius.written = [](const S& s) { return s.fiber_radius > 0.0f; };
+    t.push_back(radius);
     t.push_back(bool_param<S>("lighting_per_fragment", "every light per fragment (decision 3's reference; ~40x slower)",
                               [](auto& s) -> auto& { return s.lighting_per_fragment; }));
     t.push_back(int_param<S>("fourier_order", 1, 4, "harmonics of re in theta_l used",

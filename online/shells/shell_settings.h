@@ -23,7 +23,10 @@ struct ShellSettings {
     shading::HairParameters hair;   // the scattering parameters (shaders/hair_parameters.h)
     bool shadows = true;            // shadows between clusters (T̃, n per lighting sample and light)
     bool own_cluster_shadow = true; // shadow rays start on the cluster's axis, through its own fibres (false: outside it)
-    float kappa_between = -1.0f;    // κ of the shadow pass (opacity per unit density per λ of path); < 0: the database's
+    // Radius (scene units) of the fibres that the shadows between clusters count (online/shells/shadow_grid.h);
+    // 0: coif reference's auto radius of the same strands (models/strands.h auto_fiber_radius), so that both
+    // renderers' fibres block the same light.
+    float fiber_radius = 0.0f;
     float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
     // RMS spread (radians) of the fibres' tangents about the shell's tangent, by which the lighting widens the
     // longitudinal lobes (shading::with_tangent_spread); < 0: the style's own, measured from its strands
@@ -53,7 +56,7 @@ int supersampling(const ShellSettings& settings);
 // whole (shading::validate). background, samples and timed are not in the file.
 const ParamTable<ShellSettings>& shell_settings_table();  // the hair keys (lifted), then the renderer's
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
-// The file of `settings` (every key of the table; kappa_between only when set, TT/TRT angles only where
+// The file of `settings` (every key of the table; fiber_radius only when set, TT/TRT angles only where
 // they differ from their links): read_shell_settings of it gives `settings` back, bar background, samples
 // and timed. write_shell_settings writes it atomically.
 nlohmann::ordered_json shell_settings_json(const ShellSettings& settings);

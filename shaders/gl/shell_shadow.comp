@@ -1,14 +1,15 @@
 // Shadows between clusters (DESIGN.md decision 5) for the shell renderer's lighting pass: per
 // lighting sample and SRBF light, the light's unoccluded fraction T̃ and the fibres met n on the way
-// (shaders/lighting/srbf_shadowed.glsl), marched through the hair's optical-density grid
-// (online/shells/shadow_grid.h). They depend on the hair, the lights and κ only — not on the view or the
-// scattering parameters — so the renderer runs this pass when those change, not every frame.
+// (shaders/lighting/srbf_shadowed.glsl), marched through the grid of the strands' length by direction
+// (online/shells/shadow_grid.h): τ = 2r ∫ √(tr M (tr M − dᵀMd)) ds is the number of fibres of radius r a ray
+// along d is expected to meet, as the reference's fibres meet it. They depend on the hair, the lights and r
+// only — not on the view or the scattering parameters — so the renderer runs this pass when those change.
 //
 // The light's lobe is sampled by `u_rays` rays: its centre and a ring of u_rays − 1 directions at
 // min(λ_j, 1) rad from it (a circular Gaussian exp(2(cos θ − 1)/λ²) ≈ exp(−θ²/λ²) puts its mean
-// angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays, τ = κ ∫ density. Each ray starts at
+// angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays. Each ray starts at
 // two voxels from the lighting sample on the cluster's axis (u_own = 1; two voxels measured closer to
-// the reference than none: 12.2 against 11.9 dB), so the half of its own cluster that faces
+// the reference than none or than starts spread over the cross-section: docs/quality.md), so the half of its own cluster that faces
 // the light shades it — what the cluster's far side gets from its own fibres, which 004 eq. 12 (one
 // shadow per layer, whatever the light) cannot give; or (u_own = 0) where the ray leaves the own
 // cluster (its outer radius over the sine of the ray's angle to the axis, at most 4 radii, plus two
@@ -24,11 +25,12 @@ struct GpuLight {
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = 4) writeonly buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
 
-uniform sampler3D u_density;  // optical depth per unit length at κ = 1
+uniform sampler3D u_density;      // M per unit volume: (xx, yy, zz, xy)
+uniform sampler3D u_density_off;  // (xz, yz)
 uniform vec3 u_grid_min;
 uniform vec3 u_grid_extent;
 uniform float u_step;         // world units per march step (one voxel)
-uniform float u_kappa;
+uniform float u_width;        // the fibres' diameter 2r
 uniform int u_sample_count;
 uniform int u_light_count;
 uniform int u_rays;
@@ -48,9 +50,15 @@ float optical_depth(vec3 p, vec3 d) {
     int n = int(ceil((b - a) / u_step));
     float h = (b - a) / float(n);
     float sum = 0.0;
+    // dᵀMd = m·(dx², dy², dz², 2 dx dy) + o·(2 dx dz, 2 dy dz) (shadow_grid.cpp projected_length_density).
+    vec4 dd = vec4(d * d, 2.0 * d.x * d.y);
+    vec2 doff = vec2(2.0 * d.x * d.z, 2.0 * d.y * d.z);
     for (int k = 0; k < n; ++k) {
-        vec3 q = p + d * (a + (float(k) + 0.5) * h);
-        sum += textureLod(u_density, (q - u_grid_min) / u_grid_extent, 0.0).r;
+        vec3 uvw = (p + d * (a + (float(k) + 0.5) * h) - u_grid_min) / u_grid_extent;
+        vec4 m = textureLod(u_density, uvw, 0.0);
+        float trace = m.x + m.y + m.z;
+        float along = dot(m, dd) + dot(textureLod(u_density_off, uvw, 0.0).rg, doff);
+        sum += sqrt(max(trace * (trace - along), 0.0));
     }
     return sum * h;
 }
@@ -76,7 +84,7 @@ void main() {
         }
         float across = length(d - dot(d, T) * T);
         float start = (u_own != 0 ? 0.0 : s.position.w / max(across, 0.25)) + 2.0 * u_step;
-        float tau = u_kappa * optical_depth(s.position.xyz + start * d, d);
+        float tau = u_width * optical_depth(s.position.xyz + start * d, d);
         direct += exp(-tau);
         fibres += tau;
     }

@@ -44,56 +44,84 @@ TEST(ShadowGrid, TangentSpreadIsTheRmsAngleAboutTheLocalDirection) {
     EXPECT_THROW(strand_tangent_spread(z, std::nanf("")), Error);
 }
 
-TEST(ShadowGrid, KeepsTheStrandsOpticalMass) {
-    // Σ values · voxel³ = π λ · total strand length, exactly up to float rounding: every splat weight
-    // sums to 1 and the grid has two voxels of margin on every side.
+TEST(ShadowGrid, KeepsTheStrandsLength) {
+    // Σ tr M · voxel³ = the total strand length, up to float rounding: every splat weight sums to 1 and the
+    // grid has two voxels of margin on every side.
     const Strands s = straight_strands(50, 4.0f);
-    const double lambda = 0.05;
-    const DensityGrid g = voxelize_strands(s, glm::mat3(1.0f), lambda, 32);
-    double mass = 0;
-    for (float v : g.values) mass += v;
-    mass *= static_cast<double>(g.voxel) * g.voxel * g.voxel;
-    const double want = std::numbers::pi * lambda * 50 * 4.0;
-    EXPECT_NEAR(mass, want, 1e-4 * want);
+    const DensityGrid g = voxelize_strands(s, glm::mat3(1.0f), 32);
+    double length = 0;
+    for (int z = 0; z < g.dims.z; ++z)
+        for (int y = 0; y < g.dims.y; ++y)
+            for (int x = 0; x < g.dims.x; ++x) length += g.length_density(x, y, z);
+    length *= static_cast<double>(g.voxel) * g.voxel * g.voxel;
+    EXPECT_NEAR(length, 50 * 4.0, 1e-4 * 50 * 4.0);
     EXPECT_EQ(std::max({g.dims.x, g.dims.y, g.dims.z}), 32);
 }
 
-TEST(ShadowGrid, LineIntegralsAcrossABundleAddUpToItsMass) {
-    // Rays along x through a bundle of 100 strands along −y, at every z across it: ∫∫ value dx dz over
-    // the plane y = −2 is π λ × the strands crossing that plane (what a shadow ray integrates, summed
-    // over a ray family), up to the midpoint rules in x and z: 2 %.
+TEST(ShadowGrid, LineIntegralsAcrossABundleCountItsStrands) {
+    // Rays along x through a bundle of 100 strands along −y, at every z across it: ∫∫ projected dx dz over
+    // the plane y = −2 is the number of strands crossing that plane (so 2r times a ray's integral is the
+    // fibres of radius r it meets), up to the midpoint rules in x and z: 2 %.
     const Strands s = straight_strands(100, 4.0f);
-    const double lambda = 0.05;
-    const DensityGrid g = voxelize_strands(s, glm::mat3(1.0f), lambda, 40);
-    double over_z = 0;
-    const int nz = 200;
-    for (int k = 0; k < nz; ++k) {
-        const float z = g.origin.z + (k + 0.5f) * g.extent().z / nz;
-        over_z += g.integrate(glm::vec3(g.origin.x, -2.0f, z), glm::vec3(1, 0, 0), g.extent().x, 0.25f * g.voxel) *
-                  g.extent().z / nz;
-    }
-    const double want = std::numbers::pi * lambda * 100;
-    EXPECT_NEAR(over_z, want, 0.02 * want);
+    const DensityGrid g = voxelize_strands(s, glm::mat3(1.0f), 40);
+    const auto across = [&](glm::vec3 d) {
+        double sum = 0;
+        const int nz = 200;
+        for (int k = 0; k < nz; ++k) {
+            const float z = g.origin.z + (k + 0.5f) * g.extent().z / nz;
+            const glm::vec3 start(g.origin.x - d.x * 0.0f, -2.0f - d.y * 0.5f * g.extent().x / d.x, z);
+            sum += g.integrate(start, d, g.extent().x / d.x, 0.25f * g.voxel) * g.extent().z / nz;
+        }
+        return sum;
+    };
+    EXPECT_NEAR(across(glm::vec3(1, 0, 0)), 100.0, 0.02 * 100.0);
+    // A ray tilted by ψ from the fibres is longer across the bundle by 1/sin ψ and meets each fibre's
+    // projected width 2r sin ψ: the count per plane is the same (3 %: the tilted ray samples more voxels
+    // along y, where the bundle's ends are not in this plane).
+    const float psi = 0.6f;
+    EXPECT_NEAR(across(glm::vec3(std::sin(psi), -std::cos(psi), 0.0f)), 100.0, 0.03 * 100.0);
+}
+
+TEST(ShadowGrid, ProjectedDensityFollowsTheFibresDirection) {
+    // Parallel fibres along −y of length density ρ: ρ |sin ψ| for a ray at ψ from them, exactly (the formula
+    // is exact for parallel fibres), 0 along them.
+    const glm::vec4 m(0.0f, 3.0f, 0.0f, 0.0f);
+    const glm::vec2 o(0.0f);
+    EXPECT_FLOAT_EQ(projected_length_density(m, o, glm::vec3(1, 0, 0)), 3.0f);
+    EXPECT_NEAR(projected_length_density(m, o, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+    const float psi = 0.4f;
+    EXPECT_NEAR(projected_length_density(m, o, glm::vec3(0, std::cos(psi), std::sin(psi))), 3.0f * std::sin(psi), 1e-5f);
+    // Fibres along the diagonal (1, 1, 0)/√2 use the off-diagonal term: along them 0, across them ρ.
+    const glm::vec4 md(1.5f, 1.5f, 0.0f, 1.5f);
+    EXPECT_NEAR(projected_length_density(md, o, glm::normalize(glm::vec3(1, 1, 0))), 0.0f, 1e-3f);
+    EXPECT_NEAR(projected_length_density(md, o, glm::vec3(0, 0, 1)), 3.0f, 1e-5f);
+    // Isotropic fibres (M = ρ/3 I): the mean |sin ψ| is π/4; the formula gives √(2/3), 4 % high (the bound
+    // the header states).
+    const glm::vec4 mi(1.0f, 1.0f, 1.0f, 0.0f);
+    const float iso = projected_length_density(mi, o, glm::vec3(0, 0, 1));
+    EXPECT_NEAR(iso, 3.0f * std::sqrt(2.0f / 3.0f), 1e-5f);
+    EXPECT_LT(iso / (3.0f * std::numbers::pi_v<float> / 4.0f), 1.04f);
 }
 
 TEST(ShadowGrid, SampleIsTrilinearAndZeroOutside) {
     const Strands s = straight_strands(10, 1.0f);
-    const DensityGrid g = voxelize_strands(s, glm::mat3(1.0f), 0.05, 16);
+    const DensityGrid g = voxelize_strands(s, glm::mat3(1.0f), 16);
     ASSERT_GE(std::min({g.dims.x, g.dims.y, g.dims.z}), 4);
+    // Strands along y: the projected density across them (along x) is the length density, trilinear.
+    const glm::vec3 x(1, 0, 0);
     const glm::vec3 c = g.origin + glm::vec3(g.voxel) * (glm::vec3(2, 3, 1) + 0.5f);
-    EXPECT_FLOAT_EQ(g.sample(c), g.at(2, 3, 1));
+    EXPECT_NEAR(g.projected(c, x), g.length_density(2, 3, 1), 1e-5f * g.length_density(2, 3, 1) + 1e-6f);
     const glm::vec3 mid = c + glm::vec3(0.5f * g.voxel, 0, 0);
-    EXPECT_NEAR(g.sample(mid), 0.5f * (g.at(2, 3, 1) + g.at(3, 3, 1)), 1e-6f);
-    EXPECT_EQ(g.sample(g.origin - glm::vec3(5.0f)), 0.0f);
+    const float want = 0.5f * (g.length_density(2, 3, 1) + g.length_density(3, 3, 1));
+    EXPECT_NEAR(g.projected(mid, x), want, 1e-5f * want + 1e-6f);
+    EXPECT_EQ(g.projected(g.origin - glm::vec3(5.0f), x), 0.0f);
 }
 
 TEST(ShadowGrid, RefusesBadInput) {
-    EXPECT_THROW(voxelize_strands(Strands{}, glm::mat3(1.0f), 0.05, 32), Error);
+    EXPECT_THROW(voxelize_strands(Strands{}, glm::mat3(1.0f), 32), Error);
     const Strands s = straight_strands(4, 1.0f);
-    EXPECT_THROW(voxelize_strands(s, glm::mat3(1.0f), 0.0, 32), Error);
-    EXPECT_THROW(voxelize_strands(s, glm::mat3(1.0f), std::nan(""), 32), Error);
-    EXPECT_THROW(voxelize_strands(s, glm::mat3(1.0f), 0.05, 7), Error);
-    EXPECT_THROW(voxelize_strands(s, glm::mat3(1.0f), 0.05, 100000), Error);
+    EXPECT_THROW(voxelize_strands(s, glm::mat3(1.0f), 7), Error);
+    EXPECT_THROW(voxelize_strands(s, glm::mat3(1.0f), 100000), Error);
 }
 
 }  // namespace

@@ -43,7 +43,8 @@ TEST_F(ShellSettingsFile, BadFilesAreRefusedAtTheirKey) {
     EXPECT_EQ(refusal(R"({"sigma_a": [1, 2]})"), "JSON /sigma_a: expected [r, g, b]");
     EXPECT_EQ(refusal(R"({"nonsense": 1})").rfind("JSON /nonsense: unknown parameter", 0), 0u);
     EXPECT_EQ(refusal(R"({"kappa_shadow": -1})").rfind("JSON /kappa_shadow: ", 0), 0u);
-    EXPECT_EQ(refusal(R"({"kappa_between": 101})").rfind("JSON /kappa_between: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"fiber_radius": 101})").rfind("JSON /fiber_radius: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"fiber_radius": -0.1})").rfind("JSON /fiber_radius: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"debug": 1.5})"), "JSON /debug: must be an integer 0..4");
     EXPECT_EQ(refusal(R"({"fourier_order": 5})"), "JSON /fourier_order: must be an integer 1..4");
     EXPECT_EQ(refusal(R"({"shadows": "yes"})"), "JSON /shadows: expected true or false");
@@ -81,7 +82,7 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.hair.d_f = 0.4f;
     s.shadows = false;
     s.own_cluster_shadow = false;
-    s.kappa_between = 2.5f;
+    s.fiber_radius = 0.03f;
     s.kappa_shadow = 0.8f;
     s.neighbours = 4;
     s.fourier_order = 3;
@@ -93,11 +94,11 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     const gl::ShellSettings back = gl::read_shell_settings(path);
     EXPECT_EQ(gl::shell_settings_json(back), gl::shell_settings_json(s));
     EXPECT_EQ(std::memcmp(&back.hair.fibre, &s.hair.fibre, sizeof s.hair.fibre), 0);
-    EXPECT_EQ(back.kappa_between, 2.5f);
-    // The database's κ (kappa_between < 0) is the key's absence, not an out-of-range value.
+    EXPECT_EQ(back.fiber_radius, 0.03f);
+    // The reference's auto radius (fiber_radius 0) is the key's absence.
     const nlohmann::ordered_json defaults = gl::shell_settings_json(gl::ShellSettings{});
-    EXPECT_FALSE(defaults.contains("kappa_between"));
-    EXPECT_EQ(gl::read_shell_settings(write("d.json", defaults.dump())).kappa_between, -1.0f);
+    EXPECT_FALSE(defaults.contains("fiber_radius"));
+    EXPECT_EQ(gl::read_shell_settings(write("d.json", defaults.dump())).fiber_radius, 0.0f);
     for (const auto& p : gl::shell_settings_table())  // the one list serves the writer: every key not optional
         EXPECT_TRUE(defaults.contains(p.key) || p.written) << p.key;
 }
