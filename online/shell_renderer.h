@@ -26,8 +26,8 @@
 // Shadows between clusters (DESIGN.md decision 5): the style's strands (models/style_strands.h)
 // voxelized once into a grid of their length by direction (online/shells/shadow_grid.h), two 3D textures; a
 // compute pass (shaders/gl/shell_shadow.comp) marches it from every lighting sample towards every light for T̃
-// and the fibres met n (fibres of the reference's radius), rerun only when the lights or the radius change; the lighting pass reads them
-// (shaders/lighting/srbf_shadowed.glsl).
+// and the fibres met n (fibres of the reference's radius), rerun only when the lights or the radius change;
+// the lighting pass reads them (shaders/lighting/srbf_shadowed.glsl).
 //
 // Painted absorption: an optional σa per cluster and lighting row (models/absorption_map.h) in a texture
 // that the lighting pass reads instead of the settings' σa.
