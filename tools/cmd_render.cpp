@@ -231,6 +231,7 @@ void add_render(CLI::App& root) {
                                    {"lights", scene.lights.size()},
                                    {"render_milliseconds", render_ms},
                                    {"tangent_spread_deg", coif::degrees(double(renderer.tangent_spread(settings)))},
+                                   {"fiber_radius", renderer.fiber_radius(settings)},
                                    {"coverage", coverage_json},
                                    {"warnings", warnings}});
         const coif::gl::ShellTimings& t = renderer.timings();

@@ -180,6 +180,10 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
         if (std::string(which).empty()) {  // the default style is covered by the default database: no warning
             EXPECT_LT(doc["coverage"]["share_beyond_held_out_p95_nonempty"].get<double>(), 0.25);
             EXPECT_TRUE(doc["warnings"].empty()) << doc.dump();
+            // The shadows between clusters count fibres of the reference's own auto radius of the same strands.
+            const auto ref = run_coif("reference --width 8 --height 8 --spp 1 --json -o '" + (dir / "f.exr").string() + "'");
+            ASSERT_EQ(ref.exit_code, 0) << ref.err;
+            EXPECT_EQ(doc["fiber_radius"].get<float>(), nlohmann::json::parse(ref.out)["fiber_radius"].get<float>());
         }
         const Image bg = read_image(dir / "b.exr");
         EXPECT_NEAR(bg.at(0, 0)[0], 0.3f, 1e-3f) << which;
