@@ -102,7 +102,7 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 
 // ---- ShadowPass ------------------------------------------------------------------------------------
 
-double ShadowPass::run(const ShellGpu& gpu, float fibre_width, bool own_cluster) const {
+double ShadowPass::run(const ShellGpu& gpu, float fibre_width) const {
     glFinish();
     const auto t0 = Clock::now();
     const Program& p = program_;
@@ -118,7 +118,6 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, bool own_cluster)
     glUniform1i(p.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(p.uniform("u_light_count"), gpu.light_count);
     glUniform1i(p.uniform("u_rays"), kShadowRays);
-    glUniform1i(p.uniform("u_own"), own_cluster ? 1 : 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
@@ -169,7 +168,8 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
     const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
     const std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
                                            "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
-                                           "SHELL_FOURIER " + std::to_string(s.fourier_order)};
+                                           "SHELL_FOURIER " + std::to_string(s.fourier_order),
+                                           std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0")};
     std::string key = abuffer ? "abuffer" : "blend";
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = programs_[key];
@@ -238,9 +238,11 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
     }
     const GLint layer_loc = floor_only ? -1 : prog.uniform("u_layer");
+    const GLint rho_loc = floor_only || !s.own_cluster_shadow ? -1 : prog.uniform("u_layer_rho");
     const auto draw_layer = [&](std::size_t c, int j) {
         const MeshRange& r = shells.meshes[shells.cluster_proto[c]][static_cast<std::size_t>(j)];
         if (layer_loc >= 0) glUniform1i(layer_loc, j);
+        if (rho_loc >= 0) glUniform1f(rho_loc, static_cast<float>(L.layer_v(j + 1)));  // the layer mesh's own surface
         glDrawElementsInstancedBaseVertexBaseInstance(
             GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,

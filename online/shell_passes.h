@@ -33,7 +33,7 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-inline constexpr int kLightingTexels = 7;  // RGBA texels of the 27 floats C_k, S_k per lighting sample
+inline constexpr int kLightingTexels = 8;  // RGBA texels per lighting sample: the 27 floats C_k, S_k, V, τ_R, τ
 inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
 
 struct ShellGpu {
@@ -66,8 +66,9 @@ class ShadowPass {
 public:
     // Writes gpu.shadows; returns its wall time in ms (glFinish before and after: it runs only when the lights
     // change, so the synchronisation costs nothing per frame, and llvmpipe's timer queries miss this dispatch).
-    // fibre_width: the fibres' diameter 2r, so that τ = 2r ∫ projected length density is the fibres met.
-    double run(const ShellGpu& gpu, float fibre_width, bool own_cluster) const;
+    // fibre_width: the fibres' diameter 2r, so that τ = 2r ∫ projected length density is the fibres met. Rays
+    // start outside the own cluster: its share is each fragment's own (shaders/lighting/own_cluster.glsl).
+    double run(const ShellGpu& gpu, float fibre_width) const;
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};

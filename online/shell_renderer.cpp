@@ -31,7 +31,6 @@ struct ShellRenderer::Impl {
     // The shadow pass's inputs when it last ran (it reruns only when they or the lights change).
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
-    bool shadows_own = true;
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
 };
 
@@ -107,11 +106,10 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bo
     if (!(radius > 0.0f) || !std::isfinite(radius)) throw Error::parameter("fiber_radius", "must be finite and > 0");
     timings_.shadows_ms = 0;
     if (!floor_only && s.shadows && gpu.light_count > 0 &&
-        (!m.shadows_valid || m.shadows_radius != radius || m.shadows_own != s.own_cluster_shadow)) {
-        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, s.own_cluster_shadow);
+        (!m.shadows_valid || m.shadows_radius != radius)) {
+        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius);
         m.shadows_valid = true;
         m.shadows_radius = radius;
-        m.shadows_own = s.own_cluster_shadow;
     }
 
     // Lighting pass, then the shells; with s.timed, wall-clock per pass between glFinish calls.

@@ -109,6 +109,8 @@ void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfInd
                     m.sectors[p * per_proto + s].shadow.x = outer;
                     outer += sector_alpha[s];
                 }
+                for (int j = 0; j < L.layers; ++j)  // Σ ᾱ of every layer: one radius (shaders/lighting/own_cluster.glsl)
+                    m.sectors[p * per_proto + L.sector_index(i, j, k)].shadow.y = outer;
             }
     }
 }

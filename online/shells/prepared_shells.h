@@ -35,7 +35,7 @@ struct ShellVertex {  // shell.vert's attributes 0..4
 struct ShellSector {  // shell_shade.glsl ShellSector
     glm::uvec4 id{0};         // nearest records, best first
     glm::vec4 weight{0};
-    glm::vec4 shadow{0};      // x: Σ ᾱ of the outer sectors at the same (i, k)
+    glm::vec4 shadow{0};      // x: Σ ᾱ of the outer sectors at the same (i, k); y: Σ ᾱ of every layer there
 };
 struct ShellInstance {  // shell.vert ShellInstance
     glm::mat4 model;

@@ -55,7 +55,7 @@ ParamTable<ShellSettings> make_table() {
     compositing.set = [](S& s, int, double v) { s.compositing = static_cast<Compositing>(static_cast<int>(v)); };
     t.push_back(compositing);
     t.push_back(bool_param<S>("shadows", "shadows between clusters", [](auto& s) -> auto& { return s.shadows; }));
-    t.push_back(bool_param<S>("own_cluster_shadow", "shadow rays start on the cluster's axis, through its own fibres",
+    t.push_back(bool_param<S>("own_cluster_shadow", "the own cluster shades each fibre by its side toward the light",
                               [](auto& s) -> auto& { return s.own_cluster_shadow; }));
     Param<S> spread = real_param<S>("tangent_spread_deg", "deg", 0.0, 60.0,
                                     "RMS spread of fibre tangents about the shells' (widens beta; absent: the style's, measured)",

@@ -22,12 +22,17 @@ Compositing parse_compositing(const std::string& text, const std::string& file, 
 struct ShellSettings {
     shading::HairParameters hair;   // the scattering parameters (shaders/hair_parameters.h)
     bool shadows = true;            // shadows between clusters (T̃, n per lighting sample and light)
-    bool own_cluster_shadow = true; // shadow rays start on the cluster's axis, through its own fibres (false: outside it)
+    // The own cluster shades each of its fibres by the fibre's side toward the light (shaders/lighting/own_cluster.glsl;
+    // false: not at all). Shadows between clusters start outside the own cluster either way.
+    bool own_cluster_shadow = true;
     // Radius (scene units) of the fibres that the shadows between clusters count (online/shells/shadow_grid.h);
     // 0: coif reference's auto radius of the same strands (models/strands.h auto_fiber_radius), so that both
     // renderers' fibres block the same light.
     float fiber_radius = 0.0f;
-    float kappa_shadow = 0.5f;      // 004 eq. 12 κ_shadow (per unit of summed α)
+    // 004 eq. 12's κ_shadow (per unit of summed α): the own cluster's optical depth per unit of its layers' Σ ᾱ,
+    // toward each light with own_cluster_shadow (1: the small-α limit of Beer–Lambert; docs/quality.md measures
+    // 0.5–2), from outside only without it.
+    float kappa_shadow = 1.0f;
     // RMS spread (radians) of the fibres' tangents about the shell's tangent, by which the lighting widens the
     // longitudinal lobes (shading::with_tangent_spread); < 0: the style's own, measured from its strands
     // (ShellStats::tangent_spread). 0 lights every fibre as if it lay along its cluster's axis.

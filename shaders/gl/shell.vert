@@ -33,6 +33,7 @@ out vec4 v_L3;
 out vec4 v_L4;
 out vec4 v_L5;
 out vec4 v_L6;
+out vec2 v_L7;  // the own cluster's τ_R and τ (shell_lighting.comp)
 #endif
 
 void main() {
@@ -53,6 +54,7 @@ void main() {
     v_L4 = lighting_fetch(a_texcoord.y, inst.info.y, 4);
     v_L5 = lighting_fetch(a_texcoord.y, inst.info.y, 5);
     v_L6 = lighting_fetch(a_texcoord.y, inst.info.y, 6);
+    v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).xy;
 #endif
     gl_Position = u_view_projection * world;
 }

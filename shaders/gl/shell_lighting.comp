@@ -7,8 +7,11 @@
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
-// 27 floats in 7 RGBA32F texels per sample: texel (row, cluster · 7 + m); the 28th float is the
-// sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV).
+// 27 floats in 8 RGBA32F texels per sample: texel (row, cluster · 8 + m); the 28th float is the
+// sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV); the 29th is
+// the factor by which the lights' angles to the axis lengthen their paths across the own cluster in the
+// Fourier path (shaders/lighting/own_cluster.glsl): 1 / max(sine of light j's angle to the axis, 0.25),
+// averaged with the weights lum(w_j); texel 7's other floats are 0.
 #include "shaders/gl/shell_light.glsl"
 
 layout(local_size_x = 32) in;
@@ -37,6 +40,8 @@ void main() {
     for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
     float visible = 0.0;  // Σ_j lum(L_j) T̃_j and Σ_j lum(L_j): the sample's unoccluded fraction (shadow AOV)
     float total = 0.0;
+    float own_weight = 0.0;  // Σ_j lum(w_j) / max(sin, 0.25) and Σ_j lum(w_j) (own_cluster.glsl)
+    float own_norm = 0.0;
     for (int j = 0; j < u_light_count; ++j) {
         vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
         vec3 wj = shell_light_weight(p, j, sh, visible, total);
@@ -44,13 +49,16 @@ void main() {
         float psi = sector_azimuth(l, T, r0);
         float lp = shell_light_spread(j, T);
         C[0] += wj;
+        float lum = max(dot(wj, vec3(0.2126, 0.7152, 0.0722)), 0.0);
+        own_weight += lum / max(length(l - dot(l, T) * T) / max(length(l), 1e-6), 0.25);
+        own_norm += lum;
         for (int k = 1; k <= 4; ++k) {
             float d = exp(-float(k * k) * lp * lp * 0.25);
             C[k] += wj * (d * cos(float(k) * psi));
             S[k] += wj * (d * sin(float(k) * psi));
         }
     }
-    float v[28];
+    float v[32];
     v[0] = C[0].x; v[1] = C[0].y; v[2] = C[0].z;
     for (int k = 1; k <= 4; ++k) {
         int o = 3 + 6 * (k - 1);
@@ -58,6 +66,10 @@ void main() {
         v[o + 3] = S[k].x; v[o + 4] = S[k].y; v[o + 5] = S[k].z;
     }
     v[27] = total > 0.0 ? visible / total : 1.0;
-    for (int m = 0; m < 7; ++m)
-        imageStore(u_out, ivec2(row, cluster * 7 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
+    v[28] = own_norm > 0.0 ? own_weight / own_norm : 1.0;
+    v[29] = 0.0;
+    v[30] = 0.0;
+    v[31] = 0.0;
+    for (int m = 0; m < 8; ++m)
+        imageStore(u_out, ivec2(row, cluster * 8 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
 }

@@ -9,7 +9,11 @@
 //   lighting Σ_j w_j re(x, θv, θl_j) in the Fourier form of DESIGN.md decision 1: the lighting pass
 //            (shell_lighting.comp) stores C_k, S_k per lighting sample in a frame (r0, T × r0) fixed
 //            to the cluster axis; here they are turned to the fragment's radial axis (angle ψr).
-//   shadow   004 eq. 12: τ = exp(−κ_shadow Σ_{outer layers} ᾱ) with ᾱ each outer sector's mean α.
+//   shadow   004 eq. 12: τ = exp(−κ_shadow Σ_{outer layers} ᾱ) with ᾱ each outer sector's mean α; and with
+//            SHELL_OWN, the own cluster's shadow by the fragment's side toward each light
+//            (shaders/lighting/own_cluster.glsl): re(θl) becomes re(θl) · exp(−τ s(ρ, θl)), ρ this layer
+//            mesh's surface, τ = κ_shadow Σ ᾱ of every layer at (i, k) lengthened by the lights' angles to the
+//            axis (texel 7 of the lighting sums; per light in SHELL_LIGHTING 2); eq. 12 is then off.
 //   output   premultiplied: re already carries the coverage (planar tracer, 004 eq. 5), so the
 //            colour is lighting · re / re_norm · τ and the blend is (ONE, ONE_MINUS_SRC_ALPHA).
 //
@@ -24,6 +28,7 @@
 //   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV
 //   SHELL_FOURIER     harmonics of re in θl used, 1..4 (the database stores 4): 1 reads one atlas tile per
 //                     record, 2 and 3 two, 4 all three; the dropped ones are zero
+//   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -45,6 +50,12 @@
 #ifndef SHELL_FOURIER
 #define SHELL_FOURIER 4
 #endif
+#ifndef SHELL_OWN
+#define SHELL_OWN 1
+#endif
+#if SHELL_OWN == 1
+#include "shaders/lighting/own_cluster.glsl"
+#endif
 
 #if SHELL_LIGHTING == 2
 #include "shaders/gl/shell_light.glsl"
@@ -58,12 +69,13 @@ in vec4 v_L3;
 in vec4 v_L4;
 in vec4 v_L5;
 in vec4 v_L6;
+in vec2 v_L7;
 #endif
 
 struct ShellSector {
     uvec4 id;      // nearest records, best first
     vec4 weight;   // their weights (renormalised here over the first u_neighbours)
-    vec4 shadow;   // x: Σ of the mean α of the outer sectors at the same (i, k)
+    vec4 shadow;   // x: Σ of the mean α of the outer sectors at the same (i, k); y: of every layer there
 };
 layout(std430, binding = 1) readonly buffer Sectors { ShellSector sectors[]; };
 
@@ -79,6 +91,7 @@ uniform int u_s_u;
 uniform int u_layers;
 uniform int u_layer;
 uniform float u_kappa_shadow;
+uniform float u_layer_rho;         // this layer mesh's surface v_{j+1}, in cluster radii (SHELL_OWN)
 uniform float u_re_scale;          // 1 / re_norm
 uniform vec3 u_eye;
 
@@ -149,7 +162,14 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     vec4 t1 = mix(top1, bot1, gamma);
     vec2 t2 = mix(top2.xy, bot2.xy, gamma);
     float alpha = clamp(t0.x, 0.0, 1.0);
+#if SHELL_OWN == 1
+    // The own cluster's fibres along one radius at this (i, k), in eq. 12's units: κ_shadow Σ ᾱ of every layer;
+    // the light's side and the fragment's depth decide how much of it lies toward the light (own_cluster.glsl).
+    float tau_r = u_kappa_shadow * mix(sectors[top].shadow.y, sectors[bottom].shadow.y, gamma);
+    float tau = 1.0;
+#else
     float tau = exp(-u_kappa_shadow * mix(sectors[top].shadow.x, sectors[bottom].shadow.x, gamma));
+#endif
 
 #if SHELL_DEBUG == 1
     return vec4(vec3(alpha), alpha);
@@ -185,8 +205,20 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         float d2 = d1 * d1 * d1 * d1;
         float d3 = d2 * d2 * d1;
         float d4 = d2 * d2 * d2 * d2;
+#if SHELL_OWN == 1
+        // re times this light's own-cluster transmittance (its own angle to the axis), as harmonics, so that the
+        // light's spread blurs the product as it does in the Fourier path.
+        vec3 ld = normalize(lights[j].direction_lambda.xyz);
+        vec3 h01;
+        vec4 h23;
+        vec2 h4;
+        own_cluster_harmonics(tau_r / max(length(ld - dot(ld, T) * T), 0.25), u_layer_rho, t0.yzw, t1, t2.xy, h01, h23, h4);
+        float re = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
+                   d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
+#else
         float re = t0.y + d1 * (t0.z * cos(th) + t0.w * sin(th)) + d2 * (t1.x * cos(2.0 * th) + t1.y * sin(2.0 * th)) +
                    d3 * (t1.z * cos(3.0 * th) + t1.w * sin(3.0 * th)) + d4 * (t2.x * cos(4.0 * th) + t2.y * sin(4.0 * th));
+#endif
         lit += wj * re;
         C0 += wj;
     }
@@ -203,6 +235,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     //         fraction of the light (Σ_j lum L_j T̃_j / Σ_j lum L_j).
 #if SHELL_LIGHTING == 1
     vec4 L0 = v_L0, L1 = v_L1, L2 = v_L2, L3 = v_L3, L4 = v_L4, L5 = v_L5, L6 = v_L6;
+    vec2 L7 = v_L7;
 #else
     vec4 L0 = lighting_fetch(texcoord.y, info.y, 0);
     vec4 L1 = lighting_fetch(texcoord.y, info.y, 1);
@@ -211,6 +244,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     vec4 L4 = lighting_fetch(texcoord.y, info.y, 4);
     vec4 L5 = lighting_fetch(texcoord.y, info.y, 5);
     vec4 L6 = lighting_fetch(texcoord.y, info.y, 6);
+    vec2 L7 = lighting_fetch(texcoord.y, info.y, 7).xy;
 #endif
     vec3 C0 = L0.xyz;
 #if SHELL_DEBUG == 3
@@ -232,6 +266,17 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     vec2 e2 = vec2(e1.x * e1.x - e1.y * e1.y, 2.0 * e1.x * e1.y);
     vec2 e3 = vec2(e2.x * e1.x - e2.y * e1.y, e2.x * e1.y + e2.y * e1.x);
     vec2 e4 = vec2(e2.x * e2.x - e2.y * e2.y, 2.0 * e2.x * e2.y);
+#if SHELL_OWN == 1
+    {  // re(θl) times the own cluster's transmittance at θl, as harmonics (shaders/lighting/own_cluster.glsl)
+        vec3 h01;
+        vec4 h23;
+        vec2 h4;
+        own_cluster_harmonics(tau_r * L7.x, u_layer_rho, t0.yzw, t1, t2.xy, h01, h23, h4);
+        t0.yzw = h01;
+        t1 = h23;
+        t2.xy = h4;
+    }
+#endif
     vec3 sum = t0.y * C0;
     sum += t0.z * (C1 * e1.x + S1 * e1.y) + t0.w * (S1 * e1.x - C1 * e1.y);
     sum += t1.x * (C2 * e2.x + S2 * e2.y) + t1.y * (S2 * e2.x - C2 * e2.y);

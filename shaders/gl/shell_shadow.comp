@@ -7,14 +7,11 @@
 //
 // The light's lobe is sampled by `u_rays` rays: its centre and a ring of u_rays − 1 directions at
 // min(λ_j, 1) rad from it (a circular Gaussian exp(2(cos θ − 1)/λ²) ≈ exp(−θ²/λ²) puts its mean
-// angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays. Each ray starts at
-// two voxels from the lighting sample on the cluster's axis (u_own = 1; two voxels measured closer to
-// the reference than none or than starts spread over the cross-section: docs/quality.md), so the half of its own cluster that faces
-// the light shades it — what the cluster's far side gets from its own fibres, which 004 eq. 12 (one
-// shadow per layer, whatever the light) cannot give; or (u_own = 0) where the ray leaves the own
-// cluster (its outer radius over the sine of the ray's angle to the axis, at most 4 radii, plus two
-// voxels for the grid's blur), leaving the own cluster to eq. 12 alone. docs/renderer.md compares the
-// two against the reference: from the axis is much closer.
+// angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays. Each ray starts where it leaves the own
+// cluster (its outer radius over the sine of the ray's angle to the axis, at most 4 radii, plus two voxels
+// for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
+// the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
+// earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
 layout(local_size_x = 64) in;
 
 #include "shaders/gl/lighting_samples.glsl"
@@ -34,7 +31,6 @@ uniform float u_width;        // the fibres' diameter 2r
 uniform int u_sample_count;
 uniform int u_light_count;
 uniform int u_rays;
-uniform int u_own;             // 1: rays start on the axis (through the own cluster); 0: outside it
 
 const float TWO_PI = 6.28318530718;
 
@@ -83,7 +79,7 @@ void main() {
             d = normalize(cos(spread) * l + sin(spread) * (cos(phi) * e1 + sin(phi) * e2));
         }
         float across = length(d - dot(d, T) * T);
-        float start = (u_own != 0 ? 0.0 : s.position.w / max(across, 0.25)) + 2.0 * u_step;
+        float start = s.position.w / max(across, 0.25) + 2.0 * u_step;
         float tau = u_width * optical_depth(s.position.xyz + start * d, d);
         direct += exp(-tau);
         fibres += tau;
