@@ -380,7 +380,11 @@ Strands oriented_y_up(Strands strands) {
 
 float auto_fiber_radius(const Strands& strands) {
     const StrandStats st = strand_stats(strands);
-    return kAutoRadiusFraction * static_cast<float>(glm::length(st.bbox_max - st.bbox_min));
+    return auto_fiber_radius(st.bbox_min, st.bbox_max);
+}
+
+float auto_fiber_radius(glm::dvec3 bbox_min, glm::dvec3 bbox_max) {
+    return kAutoRadiusFraction * static_cast<float>(glm::length(bbox_max - bbox_min));
 }
 
 }  // namespace coif

@@ -137,5 +137,7 @@ Strands oriented_y_up(Strands strands);
 // Used alike by the reference path tracer (offline/reference.h) and the strand renderer (online/).
 inline constexpr float kAutoRadiusFraction = 1e-3f;
 float auto_fiber_radius(const Strands& strands);
+// The same from the strands' bounding box (StrandStats::bbox_min/max), for a caller that has it already.
+float auto_fiber_radius(glm::dvec3 bbox_min, glm::dvec3 bbox_max);
 
 }  // namespace coif

@@ -33,7 +33,8 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-inline constexpr int kLightingTexels = 8;  // RGBA texels per lighting sample: the 27 floats C_k, S_k, V, τ_R, τ
+inline constexpr int kLightingTexels = 8;  // RGBA texels per lighting sample: the 27 floats C_k, S_k, V and one more
+                                           // (shaders/gl/shell_lighting.comp)
 inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
 
 struct ShellGpu {

@@ -46,13 +46,8 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     // The shadow grid (decision 5): the strands the reference renderer draws, voxelized.
     Strands strands = sample_strands(style, StrandSampling{});
     const DensityGrid grid = voxelize_strands(strands, orientation, kShadowGridSize);
-    {
-        Strands turned;  // coif reference's radius is of the strands as it draws them: turned
-        turned.offsets = strands.offsets;
-        turned.points.reserve(strands.points.size());
-        for (const glm::vec3& q : strands.points) turned.points.push_back(orientation * q);
-        stats_.auto_fiber_radius = auto_fiber_radius(turned);
-    }
+    // coif reference's radius is of the strands as it draws them: turned, as the grid holds them.
+    stats_.auto_fiber_radius = auto_fiber_radius(glm::dvec3(grid.strands_min), glm::dvec3(grid.strands_max));
     m.gpu = std::make_unique<ShellGpu>(m.shells, atlas, grid, db.path().string());
 
     const PreparedShells& p = m.shells;

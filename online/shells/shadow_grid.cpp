@@ -86,6 +86,8 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
         hi = glm::max(hi, p[i]);
     }
     DensityGrid g;
+    g.strands_min = lo;
+    g.strands_max = hi;
     const glm::vec3 size = glm::max(hi - lo, glm::vec3(1e-6f));
     const float longest = std::max({size.x, size.y, size.z});
     g.voxel = longest / static_cast<float>(max_dim - 4);

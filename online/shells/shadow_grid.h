@@ -27,6 +27,7 @@ struct DensityGrid {
     glm::ivec3 dims{0};
     glm::vec3 origin{0.0f};   // world position of the grid's corner (voxel (0,0,0)'s low corner)
     float voxel = 1.0f;       // edge length, world units
+    glm::vec3 strands_min{0.0f}, strands_max{0.0f};  // the voxelized (turned) strands' bounding box
     // x fastest; M's diagonal (xx, yy, zz) and xy in `diagonal_xy`, (xz, yz) in `off_diagonal`: per unit volume
     std::vector<glm::vec4> diagonal_xy;
     std::vector<glm::vec2> off_diagonal;

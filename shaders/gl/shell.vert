@@ -33,7 +33,7 @@ out vec4 v_L3;
 out vec4 v_L4;
 out vec4 v_L5;
 out vec4 v_L6;
-out vec2 v_L7;  // the own cluster's τ_R and τ (shell_lighting.comp)
+out float v_L7;  // texel 7's x: the lights' mean own_cluster_stretch (shell_lighting.comp)
 #endif
 
 void main() {
@@ -54,7 +54,7 @@ void main() {
     v_L4 = lighting_fetch(a_texcoord.y, inst.info.y, 4);
     v_L5 = lighting_fetch(a_texcoord.y, inst.info.y, 5);
     v_L6 = lighting_fetch(a_texcoord.y, inst.info.y, 6);
-    v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).xy;
+    v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).x;
 #endif
     gl_Position = u_view_projection * world;
 }

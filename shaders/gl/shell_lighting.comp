@@ -10,9 +10,10 @@
 // 27 floats in 8 RGBA32F texels per sample: texel (row, cluster · 8 + m); the 28th float is the
 // sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV); the 29th is
 // the factor by which the lights' angles to the axis lengthen their paths across the own cluster in the
-// Fourier path (shaders/lighting/own_cluster.glsl): 1 / max(sine of light j's angle to the axis, 0.25),
-// averaged with the weights lum(w_j); texel 7's other floats are 0.
+// Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each light, averaged with the
+// weights lum(w_j); texel 7's other floats are 0.
 #include "shaders/gl/shell_light.glsl"
+#include "shaders/lighting/own_cluster.glsl"
 
 layout(local_size_x = 32) in;
 
@@ -40,7 +41,7 @@ void main() {
     for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
     float visible = 0.0;  // Σ_j lum(L_j) T̃_j and Σ_j lum(L_j): the sample's unoccluded fraction (shadow AOV)
     float total = 0.0;
-    float own_weight = 0.0;  // Σ_j lum(w_j) / max(sin, 0.25) and Σ_j lum(w_j) (own_cluster.glsl)
+    float own_weight = 0.0;  // Σ_j lum(w_j) own_cluster_stretch(l_j) and Σ_j lum(w_j)
     float own_norm = 0.0;
     for (int j = 0; j < u_light_count; ++j) {
         vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
@@ -50,7 +51,7 @@ void main() {
         float lp = shell_light_spread(j, T);
         C[0] += wj;
         float lum = max(dot(wj, vec3(0.2126, 0.7152, 0.0722)), 0.0);
-        own_weight += lum / max(length(l - dot(l, T) * T) / max(length(l), 1e-6), 0.25);
+        own_weight += lum * own_cluster_stretch(normalize(l), T);
         own_norm += lum;
         for (int k = 1; k <= 4; ++k) {
             float d = exp(-float(k * k) * lp * lp * 0.25);

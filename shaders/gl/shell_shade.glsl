@@ -69,7 +69,7 @@ in vec4 v_L3;
 in vec4 v_L4;
 in vec4 v_L5;
 in vec4 v_L6;
-in vec2 v_L7;
+in float v_L7;
 #endif
 
 struct ShellSector {
@@ -208,11 +208,11 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
 #if SHELL_OWN == 1
         // re times this light's own-cluster transmittance (its own angle to the axis), as harmonics, so that the
         // light's spread blurs the product as it does in the Fourier path.
-        vec3 ld = normalize(lights[j].direction_lambda.xyz);
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(tau_r / max(length(ld - dot(ld, T) * T), 0.25), u_layer_rho, t0.yzw, t1, t2.xy, h01, h23, h4);
+        own_cluster_harmonics(tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), u_layer_rho, t0.yzw, t1,
+                              t2.xy, h01, h23, h4);
         float re = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
                    d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
 #else
@@ -235,7 +235,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     //         fraction of the light (Σ_j lum L_j T̃_j / Σ_j lum L_j).
 #if SHELL_LIGHTING == 1
     vec4 L0 = v_L0, L1 = v_L1, L2 = v_L2, L3 = v_L3, L4 = v_L4, L5 = v_L5, L6 = v_L6;
-    vec2 L7 = v_L7;
+    float L7 = v_L7;
 #else
     vec4 L0 = lighting_fetch(texcoord.y, info.y, 0);
     vec4 L1 = lighting_fetch(texcoord.y, info.y, 1);
@@ -244,7 +244,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     vec4 L4 = lighting_fetch(texcoord.y, info.y, 4);
     vec4 L5 = lighting_fetch(texcoord.y, info.y, 5);
     vec4 L6 = lighting_fetch(texcoord.y, info.y, 6);
-    vec2 L7 = lighting_fetch(texcoord.y, info.y, 7).xy;
+    float L7 = lighting_fetch(texcoord.y, info.y, 7).x;
 #endif
     vec3 C0 = L0.xyz;
 #if SHELL_DEBUG == 3
@@ -271,7 +271,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(tau_r * L7.x, u_layer_rho, t0.yzw, t1, t2.xy, h01, h23, h4);
+        own_cluster_harmonics(tau_r * L7, u_layer_rho, t0.yzw, t1, t2.xy, h01, h23, h4);
         t0.yzw = h01;
         t1 = h23;
         t2.xy = h4;

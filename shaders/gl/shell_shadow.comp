@@ -15,6 +15,7 @@
 layout(local_size_x = 64) in;
 
 #include "shaders/gl/lighting_samples.glsl"
+#include "shaders/lighting/own_cluster.glsl"
 struct GpuLight {
     vec4 direction_lambda;
     vec4 radiance;
@@ -78,8 +79,7 @@ void main() {
             float phi = TWO_PI * float(r - 1) / float(u_rays - 1);
             d = normalize(cos(spread) * l + sin(spread) * (cos(phi) * e1 + sin(phi) * e2));
         }
-        float across = length(d - dot(d, T) * T);
-        float start = s.position.w / max(across, 0.25) + 2.0 * u_step;
+        float start = s.position.w * own_cluster_stretch(d, T) + 2.0 * u_step;
         float tau = u_width * optical_depth(s.position.xyz + start * d, d);
         direct += exp(-tau);
         fibres += tau;

@@ -8,9 +8,8 @@
 // this is eq. 12 turned toward each light). A fibre at ρR from the axis, whose radial direction makes the in-plane
 // angle Δ with the light, sees the light through the chord
 //     s(ρ, Δ) = −ρ cos Δ + √(1 − ρ² sin² Δ)        (in units of R; 1 − ρ facing it, 1 + ρ away)
-// of its own cluster, so its light is multiplied by O(Δ) = exp(−τ s(ρ, Δ)), with τ = τ_R divided by the
-// sine of the light's angle to the axis (the ray's path across the disc grows as the light turns along
-// the hair). Shadows between clusters then start outside the own cluster (shaders/gl/shell_shadow.comp).
+// of its own cluster, so its light is multiplied by O(Δ) = exp(−τ s(ρ, Δ)), with τ = τ_R times
+// own_cluster_stretch (the ray's path across the disc grows as the light turns along the hair). Shadows between clusters then start outside the own cluster (shaders/gl/shell_shadow.comp).
 //
 // The shells' Fourier path holds the lights only as harmonics of their azimuth (shell_lighting.comp:
 // Σ_j w_j cos kψ_j, …, k ≤ 4) and the records' re(Δ) as harmonics of the light's azimuth Δ from the
@@ -35,6 +34,13 @@ const int OWN_CLUSTER_POINTS = 16;
 // s(ρ, Δ) above, from cos Δ and sin Δ.
 COIF_FN float own_cluster_path(float rho, float cos_d, float sin_d) {
     return max(-rho * cos_d + sqrt(max(1.0 - rho * rho * sin_d * sin_d, 0.0)), 0.0);
+}
+
+// How much longer than the in-plane chord a ray along the unit direction d runs through a cluster of axis T:
+// 1 / the sine of its angle to the axis, at most 4 (a ray along the hair would cross it endlessly; 4 radii is
+// about where the hair around it takes over). The shadow pass starts its rays this many radii out.
+COIF_FN float own_cluster_stretch(vec3 d, vec3 T) {
+    return 1.0 / max(length(d - dot(d, T) * T), 0.25);
 }
 
 COIF_FN float own_cluster_transmittance(float tau, float rho, float cos_d, float sin_d) {

@@ -33,6 +33,13 @@ TEST(OwnCluster, PathIsTheChordTowardTheLight) {
     EXPECT_NEAR(glsl::own_cluster_transmittance(2.0f, 0.6f, -1.0f, 0.0f), std::exp(-3.2f), 1e-6f);
 }
 
+TEST(OwnCluster, StretchIsOneOverTheSineOfTheAngleToTheAxisAtMostFour) {
+    const vec3 T(0.0f, 1.0f, 0.0f);
+    EXPECT_FLOAT_EQ(glsl::own_cluster_stretch(vec3(1.0f, 0.0f, 0.0f), T), 1.0f);
+    EXPECT_NEAR(glsl::own_cluster_stretch(vec3(std::sin(0.5f), std::cos(0.5f), 0.0f), T), 1.0f / std::sin(0.5f), 1e-5f);
+    EXPECT_FLOAT_EQ(glsl::own_cluster_stretch(T, T), 4.0f);
+}
+
 // re(Δ) of the shells' layout at Δ.
 float series(vec3 c01, vec4 c23, vec2 c4, double delta) {
     double v = c01.x + c01.y * std::cos(delta) + c01.z * std::sin(delta);
