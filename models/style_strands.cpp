@@ -94,9 +94,10 @@ void emit(Strands& out, const Cluster& c, const DiskLayout& l, int first, const 
 
 }  // namespace
 
-Strands sample_strands(const HairStyle& style, const StrandSampling& o) {
+Strands sample_strands(const HairStyle& style, const StrandSampling& o, std::vector<std::uint32_t>* strand_cluster) {
     Strands out;
     out.offsets.push_back(0);
+    if (strand_cluster) strand_cluster->clear();
     const DiskLayout& l = style.layout;
     const int sub = std::max(1, o.points_per_hsv);
     std::map<std::size_t, std::vector<PlaneDensity>> cache;
@@ -118,6 +119,7 @@ Strands sample_strands(const HairStyle& style, const StrandSampling& o) {
         if (o.from == StrandSampling::From::Members) {
             if (c.density->kind != DensitySource::Kind::Strands) continue;
             for (const StrandRun& r : c.density->strands) emit(out, c, l, r.first_plane, r.vu, sub);
+            if (strand_cluster) strand_cluster->resize(out.strand_count(), static_cast<std::uint32_t>(ci));
             continue;
         }
         const std::vector<PlaneDensity>& planes = cache.at(c.prototype);
@@ -140,6 +142,7 @@ Strands sample_strands(const HairStyle& style, const StrandSampling& o) {
                 }
             }
             emit(out, c, l, first, vu, sub);
+            if (strand_cluster) strand_cluster->resize(out.strand_count(), static_cast<std::uint32_t>(ci));
         }
     }
     if (out.strand_count() == 0) out.offsets.clear();

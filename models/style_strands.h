@@ -17,6 +17,7 @@
 // From members: a "strands" density source's stored runs, each a strand through its (v, u) on its
 // planes — the fitted strands as the style remembers them. Other density kinds give no strands.
 #include <cstdint>
+#include <vector>
 
 #include "models/hair_style.h"
 #include "models/strands.h"
@@ -31,7 +32,9 @@ struct StrandSampling {
     double max_strands = 5e6;  // refuse to produce more (a hand-written density of 1e9 would)
 };
 
-// Throws coif::Error (no file) if the style would produce more than max_strands strands.
-Strands sample_strands(const HairStyle& style, const StrandSampling& options);
+// Throws coif::Error (no file) if the style would produce more than max_strands strands. `strand_cluster`, if
+// given, receives each strand's cluster (an index into style.clusters).
+Strands sample_strands(const HairStyle& style, const StrandSampling& options,
+                       std::vector<std::uint32_t>* strand_cluster = nullptr);
 
 }  // namespace coif

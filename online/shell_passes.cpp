@@ -143,17 +143,29 @@ void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const S
         glUniform1i(prog.uniform("u_absorption"), 2 + shading::kLutCount);
     }
     glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
+    glUniform1f(prog.uniform("u_tangent_spread"), s.tangent_spread);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
 }
 
+std::string LightingPass::tangents_define(const ShellSettings& s) {
+    // Four tangents: three (the fewest with an isotropic second moment) left 0.9–1.34 of the lighting at the axes
+    // against the reference's fibres over seven scenes, four 0.91–1.12 and six 0.94–1.12 (docs/quality.md), each
+    // tangent costing about one more pass.
+    return "SHELL_TANGENTS " + std::to_string(s.tangent_spread > 0.0f ? 4 : 1);
+}
+
 void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera) {
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
-    program_.use();
-    bind_inputs(program_, gpu, s);
-    glUniform1i(program_.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
-    glUniform1i(program_.uniform("u_rows"), gpu.lighting_rows);
-    glUniform3fv(program_.uniform("u_eye"), 1, &camera.eye.x);
+    const std::string define = tangents_define(s);
+    auto& slot = programs_[define];
+    if (!slot) slot = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_lighting.comp"}, std::vector<std::string>{define});
+    const Program& program = *slot;
+    program.use();
+    bind_inputs(program, gpu, s);
+    glUniform1i(program.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
+    glUniform1i(program.uniform("u_rows"), gpu.lighting_rows);
+    glUniform3fv(program.uniform("u_eye"), 1, &camera.eye.x);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(static_cast<GLuint>((gpu.sample_count + 31) / 32), 1, 1);
@@ -169,7 +181,8 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
     const std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
                                            "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
                                            "SHELL_FOURIER " + std::to_string(s.fourier_order),
-                                           std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0")};
+                                           std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
+                                           lighting == 2 ? LightingPass::tangents_define(s) : "SHELL_TANGENTS 1"};
     std::string key = abuffer ? "abuffer" : "blend";
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = programs_[key];

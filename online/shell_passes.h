@@ -83,8 +83,11 @@ public:
     // (ShellSettings::lighting_per_fragment) read: the tables, the parameters, the lights, their shadows, σa.
     void bind_inputs(const Program& program, const ShellGpu& gpu, const ShellSettings& s) const;
 
+    // The SHELL_TANGENTS define of the programs that light fibres (shell_light.glsl): 1 when s.tangent_spread is 0.
+    static std::string tangents_define(const ShellSettings& s);
+
 private:
-    Program program_{{"shaders/gl/shell_lighting.comp"}};
+    std::map<std::string, std::unique_ptr<Program>> programs_;  // by SHELL_TANGENTS, made on first use
     LightingTextures tables_;  // the lighting module's tables (online/lighting_uniforms.h)
 };
 

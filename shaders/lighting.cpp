@@ -53,14 +53,6 @@ void link_lobes_to_R(HairParams& p) {
     p.beta_TRT = 2.0f * p.beta_R;
 }
 
-HairParams with_tangent_spread(HairParams p, float sigma) {
-    const auto widen = [sigma](float& beta) { beta = std::min(kMaxBeta, std::sqrt(beta * beta + sigma * sigma)); };
-    widen(p.beta_R);
-    widen(p.beta_TT);
-    widen(p.beta_TRT);
-    return p;
-}
-
 void validate(const HairParams& p, const std::string& place) {
     // Every field of the one list (shaders/hair_parameters.h kHairParamsFields), in its order.
     static constexpr const char* channel[3] = {".r", ".g", ".b"};

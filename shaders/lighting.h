@@ -47,12 +47,6 @@ HairParams linked_hair_params(float eta, glm::vec3 sigma_a, float alpha_R, float
 // The same links in place: TT and TRT follow p's α_R and β_R.
 void link_lobes_to_R(HairParams& p);
 
-// A bundle of fibres whose tangents spread about the direction it is drawn with (a cluster's axis) by an
-// RMS angle σ: each fibre's longitudinal lobes are Gaussians in θ_h, and a tangent tilted by δ shifts θ_h
-// by about δ, so averaged over the bundle a lobe of width β becomes the Gaussian of width √(β² + σ²)
-// (clamped to kMaxBeta). The azimuthal terms and α are left as they are. σ in radians, ≥ 0.
-HairParams with_tangent_spread(HairParams p, float sigma);
-
 // Throws coif::Error (place = `place`, e.g. "option --eta") naming the first bad field and the range.
 void validate(const HairParams& params, const std::string& place = "hair parameters");
 void validate(const LightingConfig& config, const std::string& place = "lighting config");

@@ -1,6 +1,7 @@
 #include "online/shells/prepared_shells.h"
 
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <numeric>
@@ -159,6 +160,42 @@ PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std
     prepare_prototypes(shells, style, satf, mean_alpha);
     place_clusters(shells, style, orientation, lighting_rows_per_hsv);
     return shells;
+}
+
+float tangent_spread_about_axes(const PreparedShells& shells, const Strands& strands,
+                                std::span<const std::uint32_t> strand_cluster, const glm::mat3& orientation) {
+    if (strand_cluster.size() != strands.strand_count())
+        throw Error::parameter("tangent spread", "one cluster per strand is needed");
+    const auto rows = static_cast<std::size_t>(shells.lighting_rows);
+    if (rows == 0 || shells.samples.size() != rows * shells.clusters())
+        throw Error::parameter("tangent spread", "the shells' lighting samples are not placed");
+    double angle2 = 0, weight = 0;
+    for (std::size_t s = 0; s < strands.strand_count(); ++s) {
+        const std::size_t c = strand_cluster[s];
+        if (c >= shells.clusters()) throw Error::parameter("tangent spread", "a strand's cluster is out of range");
+        const std::span<const LightingSample> axis(shells.samples.data() + c * rows, rows);
+        for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
+            const glm::vec3 d = orientation * (strands.points[k + 1] - strands.points[k]);
+            const float len = glm::length(d);
+            if (!(len > 0) || !std::isfinite(len)) continue;
+            const glm::vec3 mid = orientation * (0.5f * (strands.points[k] + strands.points[k + 1]));
+            // The nearest sample along the axis (the axis is a curve: its rows are few, so a scan is cheap).
+            const LightingSample* best = &axis[0];
+            float best_d2 = std::numeric_limits<float>::infinity();
+            for (const LightingSample& q : axis) {
+                const glm::vec3 e = glm::vec3(q.position) - mid;
+                const float d2 = glm::dot(e, e);
+                if (d2 < best_d2) best_d2 = d2, best = &q;
+            }
+            const glm::vec3 T = glm::vec3(best->tangent);
+            const float tl = glm::length(T);
+            if (!(tl > 0)) continue;
+            const double a = std::acos(std::clamp(double(glm::dot(d / len, T / tl)), -1.0, 1.0));
+            angle2 += len * a * a;
+            weight += len;
+        }
+    }
+    return weight > 0 ? static_cast<float>(std::sqrt(angle2 / weight)) : 0.0f;
 }
 
 }  // namespace coif

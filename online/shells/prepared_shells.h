@@ -23,6 +23,7 @@
 
 #include "db/satf.h"
 #include "models/hair_style.h"
+#include "models/strands.h"
 #include "online/shells/shell_settings.h"
 
 namespace coif {
@@ -87,6 +88,13 @@ void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const Sa
 // throws coif::Error::parameter outside 0..kMaxMeshSubdivision.
 void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::mat3& orientation,
                     int lighting_rows_per_hsv = 0);
+// The RMS angle (radians, length-weighted) between the strands' tangents and their own cluster's axis tangent at
+// the nearest of its lighting samples: how far the fibres that a cluster stands for stray from the one tangent
+// its lighting samples are lit with (ShellSettings::tangent_spread, shell_lighting.comp). `strands` as sampled
+// from the style (models/style_strands.h), turned here by `orientation` as the samples are; `strand_cluster[s]`
+// strand s's cluster. Throws coif::Error::parameter if the sizes disagree or a cluster index is out of range.
+float tangent_spread_about_axes(const PreparedShells& shells, const Strands& strands,
+                                std::span<const std::uint32_t> strand_cluster, const glm::mat3& orientation);
 // Both stages.
 PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
                               const glm::mat3& orientation, int lighting_rows_per_hsv = 0);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <unordered_map>
 #include <cmath>
 #include <limits>
 
@@ -43,36 +42,6 @@ float DensityGrid::integrate(glm::vec3 p, glm::vec3 d, float length, float step)
     double sum = 0;
     for (int k = 0; k < n; ++k) sum += projected(p + d * ((k + 0.5f) * h), d);
     return static_cast<float>(sum * h);
-}
-
-float strand_tangent_spread(const Strands& strands, float cell) {
-    if (!(cell > 0) || !std::isfinite(cell)) throw Error::parameter("tangent spread", "the cell size must be finite and > 0");
-    // Cells hashed by their integer coordinates; the sum of length-weighted unit tangents per cell.
-    std::unordered_map<std::uint64_t, glm::dvec3> sums;
-    const auto key = [cell](glm::vec3 q) {
-        const glm::ivec3 i = glm::ivec3(glm::floor(q / cell)) + (1 << 20);
-        return (std::uint64_t(std::uint32_t(i.x) & 0x1fffff) << 42) | (std::uint64_t(std::uint32_t(i.y) & 0x1fffff) << 21) |
-               std::uint64_t(std::uint32_t(i.z) & 0x1fffff);
-    };
-    const auto each_segment = [&strands](auto&& f) {
-        for (std::size_t s = 0; s + 1 < strands.offsets.size(); ++s)
-            for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
-                const glm::vec3 d = strands.points[k + 1] - strands.points[k];
-                const float len = glm::length(d);
-                if (len > 0 && std::isfinite(len)) f(0.5f * (strands.points[k] + strands.points[k + 1]), glm::dvec3(d / len), double(len));
-            }
-    };
-    each_segment([&](glm::vec3 mid, glm::dvec3 t, double len) { sums[key(mid)] += t * len; });
-    double angle2 = 0, weight = 0;
-    each_segment([&](glm::vec3 mid, glm::dvec3 t, double len) {
-        const glm::dvec3 m = sums[key(mid)];
-        const double ml = glm::length(m);
-        if (!(ml > 0)) return;
-        const double a = std::acos(std::clamp(glm::dot(t, m / ml), -1.0, 1.0));
-        angle2 += len * a * a;
-        weight += len;
-    });
-    return weight > 0 ? static_cast<float>(std::sqrt(angle2 / weight)) : 0.0f;
 }
 
 DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim) {

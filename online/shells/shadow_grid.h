@@ -47,12 +47,6 @@ struct DensityGrid {
 // repeats (it is two lines; a test compares the GPU's march with integrate()).
 float projected_length_density(glm::vec4 diagonal_xy, glm::vec2 off_diagonal, glm::vec3 omega);
 
-// The RMS angle (radians) between each strand segment and the mean direction of the segments in its cell
-// (cubes of edge `cell`, segments by their midpoints, weighted by length): how far fibres stray from the
-// local direction of their bundle, which the shells draw as one tangent (ShellSettings::tangent_spread).
-// Segments keep their root → tip sense, so hair flowing one way through a cell has a defined mean.
-float strand_tangent_spread(const Strands& strands, float cell);
-
 // Throws coif::Error::parameter on an empty strand set or max_dim outside 8..512.
 DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim);
 

@@ -58,7 +58,7 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(bool_param<S>("own_cluster_shadow", "the own cluster shades each fibre by its side toward the light",
                               [](auto& s) -> auto& { return s.own_cluster_shadow; }));
     Param<S> spread = real_param<S>("tangent_spread_deg", "deg", 0.0, 60.0,
-                                    "RMS spread of fibre tangents about the shells' (widens beta; absent: the style's, measured)",
+                                    "RMS spread of fibre tangents about the cluster axes, lit as a ring of tangents (0: one; absent: the style's, measured)",
                                     [](auto& s) -> auto& { return s.tangent_spread; });
     spread.written = [](const S& s) { return s.tangent_spread >= 0.0f; };
     t.push_back(spread);

@@ -33,8 +33,8 @@ struct ShellSettings {
     // toward each light with own_cluster_shadow (1: the small-α limit of Beer–Lambert; docs/quality.md measures
     // 0.5–2), from outside only without it.
     float kappa_shadow = 1.0f;
-    // RMS spread (radians) of the fibres' tangents about the shell's tangent, by which the lighting widens the
-    // longitudinal lobes (shading::with_tangent_spread); < 0: the style's own, measured from its strands
+    // RMS spread (radians) of the fibres' tangents about the shell's tangent: the lighting averages a ring of
+    // tangents at this angle (shaders/gl/shell_light.glsl); < 0: the style's own, measured from its strands
     // (ShellStats::tangent_spread). 0 lights every fibre as if it lay along its cluster's axis.
     float tangent_spread = -1.0f;
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours

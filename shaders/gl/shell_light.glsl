@@ -8,6 +8,7 @@
 
 #include "shaders/gl/srbf_lights.glsl"
 #include "shaders/gl/sector_frame.glsl"
+#include "shaders/lighting/fibre_tangents.glsl"
 
 layout(std430, binding = 4) readonly buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
 
@@ -23,6 +24,17 @@ vec3 shell_light_weight(SrbfPoint p, int j, vec2 sh, inout float lum_visible, in
     lum_visible += lum * sh.x;
     lum_total += lum;
     return srbf_light_radiance(p, u_d_f, j, sh);
+}
+
+// The fibres' tangents about the cluster's (shaders/lighting/fibre_tangents.glsl): SHELL_TANGENTS of them at
+// angle u_tangent_spread (ShellSettings::tangent_spread) from T; 1 is T itself.
+#ifndef SHELL_TANGENTS
+#define SHELL_TANGENTS 1
+#endif
+uniform float u_tangent_spread;  // σ, radians
+
+void shell_fibre_tangent(vec3 T, vec3 r0, vec3 V, int q, out vec3 Tq, out vec3 rq) {
+    fibre_tangent(T, r0, V, u_tangent_spread, q, SHELL_TANGENTS, Tq, rq);
 }
 
 // λ' = λ_j over the length of the light direction projected on the normal plane of T: the light's

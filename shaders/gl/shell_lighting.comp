@@ -3,7 +3,8 @@
 // w_j = L_j (T̃_j 𝓜_j + multiple scattering) of the SRBF Marschner lighting (shaders/lighting/
 // srbf_shadowed.glsl: 000 eq. 2–5 in Zinke's split) with T̃_j and the fibres met n_j from the shadow
 // pass (shell_shadow.comp; T̃ = 1, n = 0 when shadows between clusters are off), and the light's in-plane
-// azimuth ψ_j in the fixed frame (r0, T × r0) (shaders/gl/sector_frame.glsl). Stored:
+// azimuth ψ_j in the fixed frame (r0, T × r0) (shaders/gl/sector_frame.glsl). w_j is the mean over the
+// fibres' tangents about T (shell_fibre_tangent in shell_light.glsl, SHELL_TANGENTS of them). Stored:
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
@@ -35,7 +36,6 @@ void main() {
     vec3 T = normalize(s.tangent.xyz);
     vec3 r0 = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
     vec3 V = normalize(u_eye - s.position.xyz);
-    SrbfPoint p = srbf_point(hp, V, T, r0);
     vec3 C[5];
     vec3 S[5];
     for (int k = 0; k < 5; ++k) { C[k] = vec3(0.0); S[k] = vec3(0.0); }
@@ -43,20 +43,29 @@ void main() {
     float total = 0.0;
     float own_weight = 0.0;  // Σ_j lum(w_j) own_cluster_stretch(l_j) and Σ_j lum(w_j)
     float own_norm = 0.0;
-    for (int j = 0; j < u_light_count; ++j) {
-        vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
-        vec3 wj = shell_light_weight(p, j, sh, visible, total);
-        vec3 l = lights[j].direction_lambda.xyz;
-        float psi = sector_azimuth(l, T, r0);
-        float lp = shell_light_spread(j, T);
-        C[0] += wj;
-        float lum = max(dot(wj, vec3(0.2126, 0.7152, 0.0722)), 0.0);
-        own_weight += lum * own_cluster_stretch(normalize(l), T);
-        own_norm += lum;
-        for (int k = 1; k <= 4; ++k) {
-            float d = exp(-float(k * k) * lp * lp * 0.25);
-            C[k] += wj * (d * cos(float(k) * psi));
-            S[k] += wj * (d * sin(float(k) * psi));
+    // The fibres' tangents about T (shell_fibre_tangent): each is lit with its own angles; the light's azimuth ψ_j
+    // stays in the axis frame, where re meets it. The lum-weighted sums below are ratios, so summing them over the
+    // tangents leaves them means.
+    for (int q = 0; q < SHELL_TANGENTS; ++q) {
+        vec3 Tq;
+        vec3 rq;
+        shell_fibre_tangent(T, r0, V, q, Tq, rq);
+        SrbfPoint p = srbf_point(hp, V, Tq, rq);
+        for (int j = 0; j < u_light_count; ++j) {
+            vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
+            vec3 wj = shell_light_weight(p, j, sh, visible, total) * (1.0 / float(SHELL_TANGENTS));
+            vec3 l = lights[j].direction_lambda.xyz;
+            float psi = sector_azimuth(l, T, r0);
+            float lp = shell_light_spread(j, T);
+            C[0] += wj;
+            float lum = max(dot(wj, vec3(0.2126, 0.7152, 0.0722)), 0.0);
+            own_weight += lum * own_cluster_stretch(normalize(l), T);
+            own_norm += lum;
+            for (int k = 1; k <= 4; ++k) {
+                float d = exp(-float(k * k) * lp * lp * 0.25);
+                C[k] += wj * (d * cos(float(k) * psi));
+                S[k] += wj * (d * sin(float(k) * psi));
+            }
         }
     }
     float v[32];

@@ -29,6 +29,7 @@
 //   SHELL_FOURIER     harmonics of re in θl used, 1..4 (the database stores 4): 1 reads one atlas tile per
 //                     record, 2 and 3 two, 4 all three; the dropped ones are zero
 //   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none
+//   SHELL_TANGENTS    with SHELL_LIGHTING 2: the fibres' tangents each light is evaluated at (shell_light.glsl)
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -189,7 +190,6 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     if (u_absorption_on != 0)
         hp.sigma_a = mix(texelFetch(u_absorption, ivec2(row, int(info.y)), 0).rgb,
                          texelFetch(u_absorption, ivec2(row + 1, int(info.y)), 0).rgb, f);
-    SrbfPoint pt = srbf_point(hp, V, T, r);
     vec3 lit = vec3(0.0);
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
@@ -198,7 +198,14 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         vec2 sh = vec2(1.0, 0.0);
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
-        vec3 wj = shell_light_weight(pt, j, sh, visible, total);
+        // The mean over the fibres' tangents about T, as in the lighting pass (shell_fibre_tangent).
+        vec3 wj = vec3(0.0);
+        for (int q = 0; q < SHELL_TANGENTS; ++q) {
+            vec3 Tq;
+            vec3 rq;
+            shell_fibre_tangent(T, r, V, q, Tq, rq);
+            wj += shell_light_weight(srbf_point(hp, V, Tq, rq), j, sh, visible, total) * (1.0 / float(SHELL_TANGENTS));
+        }
         float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
         float lp = shell_light_spread(j, T);
         float d1 = exp(-0.25 * lp * lp);

@@ -1,10 +1,12 @@
 // The optical-density grid of the shell renderer's shadows between clusters (online/shells/shadow_grid.h).
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "models/core/error.h"
+#include "online/shells/prepared_shells.h"
 #include "online/shells/shadow_grid.h"
 
 namespace coif {
@@ -21,27 +23,40 @@ Strands straight_strands(int count, float length) {
     return s;
 }
 
-TEST(ShadowGrid, TangentSpreadIsTheRmsAngleAboutTheLocalDirection) {
-    // Parallel straight strands: every segment along its cell's mean, spread 0 (float rounding: 1e-3 rad).
-    EXPECT_NEAR(strand_tangent_spread(straight_strands(50, 2.0f), 0.5f), 0.0f, 1e-3f);
-    // Zigzags of ±δ about -y, both senses in every cell with segments of equal length: the cell means lie
-    // along -y, so every segment is δ off and the RMS is δ (2e-3 rad: a cell may hold one more segment of
-    // one sense than the other, tilting its mean a little).
+TEST(TangentSpread, IsTheRmsAngleAboutTheOwnClustersAxis) {
+    // Two clusters, each an axis along −y sampled at 9 rows (placed 1 apart in x), the shells' lighting samples.
+    PreparedShells shells;
+    shells.cluster_proto = {0, 0};
+    shells.lighting_rows = 9;
+    for (int c = 0; c < 2; ++c)
+        for (int r = 0; r < 9; ++r)
+            shells.samples.push_back({glm::vec4(float(c), -0.5f * float(r), 0.0f, 0.1f), glm::vec4(0, -1, 0, 0), glm::vec4(1, 0, 0, 0)});
+    // Straight strands along the axes: spread 0 (float rounding: 1e-3 rad).
+    const Strands straight = straight_strands(20, 4.0f);
+    std::vector<std::uint32_t> cluster(straight.strand_count(), 0u);
+    EXPECT_NEAR(tangent_spread_about_axes(shells, straight, cluster, glm::mat3(1.0f)), 0.0f, 1e-3f);
+    // Zigzags of ±δ about −y: every segment is δ off its axis, so the RMS is δ (float rounding of acos: 1e-4 rad),
+    // whichever cluster they belong to, and turned with their axes (the orientation applies to the strands only,
+    // so a quarter turn about y leaves −y and δ as they are).
     const float delta = 0.35f;
     Strands z;
     z.offsets.push_back(0);
-    for (int i = 0; i < 20; ++i) {
-        glm::vec3 p(0.05f * float(i), 0.0f, 0.0f);
-        for (int k = 0; k <= 400; ++k) {
+    for (int i = 0; i < 4; ++i) {
+        glm::vec3 p(float(i % 2), 0.0f, 0.0f);
+        for (int k = 0; k <= 100; ++k) {
             z.points.push_back(p);
             const float s = (k % 2 == 0) ? 1.0f : -1.0f;
-            p += 0.01f * glm::vec3(s * std::sin(delta), -std::cos(delta), 0.0f);
+            p += 0.04f * glm::vec3(s * std::sin(delta), -std::cos(delta), 0.0f);
         }
         z.offsets.push_back(static_cast<std::uint32_t>(z.points.size()));
     }
-    EXPECT_NEAR(strand_tangent_spread(z, 0.25f), delta, 2e-3f);
-    EXPECT_THROW(strand_tangent_spread(z, 0.0f), Error);
-    EXPECT_THROW(strand_tangent_spread(z, std::nanf("")), Error);
+    const std::vector<std::uint32_t> own{0u, 1u, 0u, 1u};
+    EXPECT_NEAR(tangent_spread_about_axes(shells, z, own, glm::mat3(1.0f)), delta, 1e-4f);
+    const glm::mat3 quarter = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0)));
+    EXPECT_NEAR(tangent_spread_about_axes(shells, z, own, quarter), delta, 1e-4f);
+    // A strand's cluster must exist, and every strand needs one.
+    EXPECT_THROW(tangent_spread_about_axes(shells, z, std::vector<std::uint32_t>{0u, 1u, 2u, 0u}, glm::mat3(1.0f)), Error);
+    EXPECT_THROW(tangent_spread_about_axes(shells, z, std::vector<std::uint32_t>{0u, 1u}, glm::mat3(1.0f)), Error);
 }
 
 TEST(ShadowGrid, KeepsTheStrandsLength) {

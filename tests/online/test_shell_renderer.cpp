@@ -15,9 +15,14 @@
 #include "online/shells/shadow_grid.h"
 #include "online/shell_renderer.h"
 #include "shaders/hair_parameters.h"
+#include "shaders/glsl_prelude.h"
 #include "shaders/lighting.h"
 #include "tests/common/run.h"
 #include "tests/online/shell_test_scene.h"
+
+namespace coif::glsl {
+#include "shaders/lighting/fibre_tangents.glsl"
+}  // namespace coif::glsl
 
 namespace coif {
 namespace {
@@ -43,27 +48,42 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     const Camera camera = front_camera(renderer);
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
+    // The straight cluster's sampled strands lie along its axis: no spread of their own (float rounding).
+    EXPECT_LT(renderer.stats().tangent_spread, 1e-3f);
+    // Without a spread, and with one: the lighting is then the mean over the ring of fibre tangents
+    // (shaders/lighting/fibre_tangents.glsl, four of them in the lighting pass), here taken on the CPU.
+    for (const float spread : {0.0f, 0.5f})
     for (const bool multiple : {false, true}) {
     gl::ShellSettings settings;
     settings.hair.multiple = multiple;
+    settings.tangent_spread = spread;
     settings.shadows = false;  // one cluster; the shadowed case is ShadowsBetweenClusters… below
     renderer.draw(camera, settings);
     const std::vector<float> lit = renderer.read_lighting();
     const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
-        double worst = 0;
+    const int tangents = spread > 0.0f ? 4 : 1;
+    double worst = 0;
     for (int r = 0; r < renderer.lighting_rows(); ++r) {
         const std::vector<glm::vec3> s = renderer.lighting_sample(static_cast<std::size_t>(r));
-        const shading::FibreFrame frame = shading::FibreFrame::from_tangent(s[1], s[2]);
         const glm::vec3 view = glm::normalize(camera.eye - s[0]);
-        const glm::vec3 want = ev.shade(frame, view, std::span(&light, 1), {}, multiple).total();
+        const glm::vec3 T = glm::normalize(s[1]);
+        const glm::vec3 r0 = glm::normalize(s[2] - glm::dot(s[2], T) * T);
+        glm::vec3 want(0.0f);
+        for (int q = 0; q < tangents; ++q) {
+            glm::vec3 Tq, rq;
+            glsl::fibre_tangent(T, r0, view, spread, q, tangents, Tq, rq);
+            want += ev.shade(shading::FibreFrame::from_tangent(Tq, rq), view, std::span(&light, 1), {}, multiple).total() /
+                    float(tangents);
+        }
         const glm::vec3 got(lit[r * 27 + 0], lit[r * 27 + 1], lit[r * 27 + 2]);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(got[c]) - want[c]) / std::max(1e-3, double(want[c])));
         if (r == 0) std::printf("row 0: GPU %g %g %g, CPU %g %g %g\n", got.x, got.y, got.z, want.x, want.y, want.z);
     }
-    std::printf("multiple %d: worst relative difference GPU lighting pass vs CPU evaluator: %.3g\n", multiple, worst);
+    std::printf("spread %.1f, multiple %d: worst relative difference GPU lighting pass vs CPU evaluator: %.3g\n", spread,
+                multiple, worst);
     // Same GLSL on both sides; the GPU runs float transcendental functions of llvmpipe and bilinear
     // texture fetches at GL's 8-bit sub-texel precision, so allow 1 %.
-    EXPECT_LT(worst, 0.01) << "multiple scattering " << multiple;
+    EXPECT_LT(worst, 0.01) << "spread " << spread << ", multiple scattering " << multiple;
     }
 }
 
@@ -275,9 +295,12 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
     // and the linear interpolation of the per-sample sums along t (8 rows over 10 cm): two independent
     // paths from re and the lights to a pixel. Bounds: for a wide light (λ = 1) the means and the mean
     // |Δ| within 1 % (measured 0.3 %); for a narrow one (λ = 0.1, a highlight a few degrees wide, which a
-    // linear interpolation between rows flattens) within 6 % (measured 4.4 %).
+    // linear interpolation between rows flattens) within 6 % (measured 4.4 %). The same with the fibres'
+    // tangents spread by 0.5 rad about the axis, both paths lighting the ring of fibre tangents
+    // (shaders/lighting/fibre_tangents.glsl): measured 0.2 % (λ = 1) and 1.1 % (λ = 0.1), the ring widening the highlight.
     auto context = gl::Context::headless();
     gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    for (const float spread : {0.0f, 0.5f})
     for (const float lambda : {0.1f, 1.0f}) {
         SrbfLight light;
         light.L = glm::vec3(1.0f, 0.8f, 0.6f);
@@ -289,6 +312,7 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
         gl::ShellSettings s;
         s.samples = 1;
         s.shadows = false;
+        s.tangent_spread = spread;
         s.background = glm::vec3(0.0f);
         const Image samples = renderer.render(camera, s);
         s.lighting_per_fragment = true;
@@ -300,12 +324,12 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
                 mean_f += fragments.pixels[i];
                 diff += std::abs(samples.pixels[i] - fragments.pixels[i]);
             }
-        std::printf("λ %.1f: per-sample mean %.4g, per-fragment mean %.4g, mean |Δ| %.3g of the mean\n", lambda,
-                    mean_s, mean_f, diff / std::max(mean_f, 1e-12));
+        std::printf("spread %.1f, λ %.1f: per-sample mean %.4g, per-fragment mean %.4g, mean |Δ| %.3g of the mean\n",
+                    spread, lambda, mean_s, mean_f, diff / std::max(mean_f, 1e-12));
         ASSERT_GT(mean_f, 0.0);
         const double bound = lambda < 0.5f ? 0.06 : 0.01;
-        EXPECT_NEAR(mean_s / mean_f, 1.0, bound) << "λ " << lambda;
-        EXPECT_LT(diff, bound * mean_f) << "λ " << lambda;
+        EXPECT_NEAR(mean_s / mean_f, 1.0, bound) << "spread " << spread << ", λ " << lambda;
+        EXPECT_LT(diff, bound * mean_f) << "spread " << spread << ", λ " << lambda;
     }
 }
 

@@ -41,32 +41,6 @@ TEST(LutImage, SamplesLikeGlLinearClampToEdge) {
     EXPECT_FLOAT_EQ(img.sample({0.5f, 0.5f}).x, 6.5f);
 }
 
-TEST(TangentSpread, WidensEveryLongitudinalLobeInQuadrature) {
-    // A Gaussian lobe of width β averaged over tangent tilts of RMS σ is the Gaussian of width √(β² + σ²):
-    // checked numerically here (midpoint rule over ±6 widths, 1e-4 of the peak), then on every lobe of the
-    // parameters, clamped at kMaxBeta; α, η and σa are untouched.
-    const double beta = 0.13, sigma = 0.4, wide = std::sqrt(beta * beta + sigma * sigma);
-    const auto g = [](double x, double b) { return std::exp(-0.5 * x * x / (b * b)) / (b * std::sqrt(2.0 * 3.14159265358979)); };
-    for (double x : {0.0, 0.2, 0.5, 1.0}) {
-        double sum = 0;
-        const int n = 4000;
-        for (int i = 0; i < n; ++i) {
-            const double d = -6.0 * sigma + 12.0 * sigma * (i + 0.5) / n;
-            sum += g(x - d, beta) * g(d, sigma) * 12.0 * sigma / n;
-        }
-        EXPECT_NEAR(sum, g(x, wide), 1e-4 * g(0.0, wide)) << x;
-    }
-    const coif::shading::HairParams p = coif::shading::default_hair_params();
-    const coif::shading::HairParams w = coif::shading::with_tangent_spread(p, 0.4f);
-    EXPECT_NEAR(w.beta_R, std::sqrt(p.beta_R * p.beta_R + 0.16f), 1e-6f);
-    EXPECT_NEAR(w.beta_TT, std::sqrt(p.beta_TT * p.beta_TT + 0.16f), 1e-6f);
-    EXPECT_NEAR(w.beta_TRT, std::sqrt(p.beta_TRT * p.beta_TRT + 0.16f), 1e-6f);
-    EXPECT_EQ(w.alpha_R, p.alpha_R);
-    EXPECT_EQ(w.eta, p.eta);
-    EXPECT_EQ(coif::shading::with_tangent_spread(p, 0.0f).beta_R, p.beta_R);
-    EXPECT_EQ(coif::shading::with_tangent_spread(p, 3.0f).beta_TRT, coif::shading::kMaxBeta);
-}
-
 TEST(LightingTables, BuildAndMatchDirectIntegration) {
     const LightingTables& t = global_lighting_tables();
     std::printf("tables built in %.3f s\n", t.build_seconds);
