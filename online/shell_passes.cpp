@@ -143,16 +143,16 @@ void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const S
         glUniform1i(prog.uniform("u_absorption"), 2 + shading::kLutCount);
     }
     glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
-    glUniform1f(prog.uniform("u_tangent_spread"), s.tangent_spread);
+    glUniform1f(prog.uniform("u_tangent_spread"), s.tangent_spread);  // < 0: the samples' measured tilts
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
 }
 
 std::string LightingPass::tangents_define(const ShellSettings& s) {
-    // Four tangents: three (the fewest with an isotropic second moment) left 0.9–1.34 of the lighting at the axes
-    // against the reference's fibres over seven scenes, four 0.91–1.12 and six 0.94–1.12 (docs/quality.md), each
-    // tangent costing about one more pass.
-    return "SHELL_TANGENTS " + std::to_string(s.tangent_spread > 0.0f ? 4 : 1);
+    // Four tangents (shaders/lighting/fibre_tangents.glsl), each costing about one more pass; one when the
+    // spread is 0.
+    return "SHELL_TANGENTS " + std::to_string(s.tangent_spread != 0.0f ? 4 : 1);
 }
 
 void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera) {

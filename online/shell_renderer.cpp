@@ -47,6 +47,8 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     std::vector<std::uint32_t> strand_cluster;
     Strands strands = sample_strands(style, StrandSampling{}, &strand_cluster);
     const DensityGrid grid = voxelize_strands(strands, orientation, kShadowGridSize);
+    // How the same strands' tangents tilt about each lighting sample's, for the lighting (before the upload).
+    stats_.tangent_spread = measure_fibre_tilts(m.shells, strands, strand_cluster, orientation);
     // coif reference's radius is of the strands as it draws them: turned, as the grid holds them.
     stats_.auto_fiber_radius = auto_fiber_radius(glm::dvec3(grid.strands_min), glm::dvec3(grid.strands_max));
     m.gpu = std::make_unique<ShellGpu>(m.shells, atlas, grid, db.path().string());
@@ -66,7 +68,7 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     stats_.grid_y = grid.dims.y;
     stats_.grid_z = grid.dims.z;
     stats_.voxel = grid.voxel;
-    stats_.tangent_spread = tangent_spread_about_axes(m.shells, strands, strand_cluster, orientation);
+
     bounds_min_ = p.bounds_min;
     bounds_max_ = p.bounds_max;
     if (sampled_strands) *sampled_strands = std::move(strands);
@@ -84,11 +86,8 @@ void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_a
 
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {
     Impl& m = *impl_;
-    // The fibres' tangents spread about the shells' (ShellSettings::tangent_spread): the lighting pass and the
-    // per-fragment path light a ring of tangents at this angle (shaders/gl/shell_light.glsl).
     ShellSettings s = settings;
     if (!(s.tangent_spread <= 60.0f * float(kPi / 180.0))) throw Error::parameter("tangent_spread", "must be at most 60 degrees");
-    s.tangent_spread = tangent_spread(settings);
     ShellGpu& gpu = *m.gpu;
     if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
         throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));

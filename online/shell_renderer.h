@@ -64,8 +64,8 @@ struct ShellStats {
     std::size_t shadow_strands = 0;  // strands voxelized for the shadow grid
     int grid_x = 0, grid_y = 0, grid_z = 0;
     float voxel = 0;                 // shadow grid voxel edge, world units
-    // RMS angle (radians) of the style's strands about their own cluster's axis (tangent_spread_about_axes,
-    // online/shells/prepared_shells.h): the lighting's default ShellSettings::tangent_spread.
+    // RMS angle (radians) of the style's strands about their own cluster's axis (measure_fibre_tilts,
+    // online/shells/prepared_shells.h, which also gives the lighting each sample's tilts).
     float tangent_spread = 0;
     // coif reference's auto fibre radius of the same strands as oriented (models/strands.h auto_fiber_radius):
     // the radius the shadows between clusters count unless ShellSettings::fiber_radius sets one.
@@ -114,8 +114,8 @@ public:
     FragmentListStats fragment_list_stats() const;
 
     const ShellStats& stats() const { return stats_; }
-    // The tangent spread (radians) the lighting uses with `settings`: settings.tangent_spread when ≥ 0, else the
-    // style's measured stats().tangent_spread.
+    // The RMS tangent spread (radians) the lighting uses with `settings`: settings.tangent_spread when ≥ 0, else
+    // the RMS of the style's measured tilts, stats().tangent_spread.
     float tangent_spread(const ShellSettings& settings) const {
         return settings.tangent_spread >= 0.0f ? settings.tangent_spread : stats_.tangent_spread;
     }

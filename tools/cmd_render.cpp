@@ -247,7 +247,7 @@ void add_render(CLI::App& root) {
         std::fprintf(stderr, "re_norm %.4f, record atlas %dx%d; fibre tangents spread %.1f deg about the shells' (%s)\n", st.re_norm,
                      st.atlas_width, st.atlas_height,
                      coif::degrees(double(renderer.tangent_spread(settings))),
-                     settings.tangent_spread >= 0 ? "--params tangent_spread_deg" : "measured from the style's strands");
+                     settings.tangent_spread >= 0 ? "--params tangent_spread_deg, as a ring" : "measured from the style's strands at every lighting sample");
         if (settings.shadows) {
             double direct = 0, fibres = 0;
             const std::vector<glm::vec2> sh = renderer.read_shadows();

@@ -42,9 +42,14 @@ struct ShellInstance {  // shell.vert ShellInstance
     glm::mat4 model;
     glm::uvec4 info;          // x: first sector of the prototype, y: cluster index
 };
-struct LightingSample {  // shell_lighting.comp / shell_shadow.comp
+struct LightingSample {  // shaders/gl/lighting_samples.glsl
     glm::vec4 position;       // world; w: the cluster's radius there
     glm::vec4 tangent, normal;
+    // How the fibres' tangents tilt about `tangent` here (measure_fibre_tilts; zero until measured): tilts are
+    // vectors ⟂ tangent whose length is the angle (radians); their mean, and the principal axes a, b of their
+    // spread about it, scaled so that the four tilts mean ± a, mean ± b have the fibres' second moment
+    // (shaders/lighting/fibre_tangents.glsl). xyz; w unused.
+    glm::vec4 tilt_mean{0.0f}, tilt_a{0.0f}, tilt_b{0.0f};
 };
 // One layer mesh inside the shared vertex and index arrays.
 struct MeshRange {
@@ -88,13 +93,15 @@ void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const Sa
 // throws coif::Error::parameter outside 0..kMaxMeshSubdivision.
 void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::mat3& orientation,
                     int lighting_rows_per_hsv = 0);
-// The RMS angle (radians, length-weighted) between the strands' tangents and their own cluster's axis tangent at
-// the nearest of its lighting samples: how far the fibres that a cluster stands for stray from the one tangent
-// its lighting samples are lit with (ShellSettings::tangent_spread, shell_lighting.comp). `strands` as sampled
-// from the style (models/style_strands.h), turned here by `orientation` as the samples are; `strand_cluster[s]`
-// strand s's cluster. Throws coif::Error::parameter if the sizes disagree or a cluster index is out of range.
-float tangent_spread_about_axes(const PreparedShells& shells, const Strands& strands,
-                                std::span<const std::uint32_t> strand_cluster, const glm::mat3& orientation);
+// How the strands' tangents tilt about the axis at each lighting sample (LightingSample::tilt_*), from the strand
+// segments whose nearest lighting sample of their own cluster it is, length-weighted. `strands` as sampled from
+// the style (models/style_strands.h), turned here by `orientation` as the samples are; `strand_cluster[s]` strand
+// s's cluster. A sample that no segment is nearest to keeps zero tilts (its fibres are lit along the axis).
+// Returns the RMS tilt over all segments (radians): how far the fibres stray from the one tangent a cluster is lit
+// with (ShellStats::tangent_spread). Throws coif::Error::parameter if the sizes disagree or a cluster index is out
+// of range.
+float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::span<const std::uint32_t> strand_cluster,
+                          const glm::mat3& orientation);
 // Both stages.
 PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
                               const glm::mat3& orientation, int lighting_rows_per_hsv = 0);

@@ -33,9 +33,9 @@ struct ShellSettings {
     // toward each light with own_cluster_shadow (1: the small-α limit of Beer–Lambert; docs/quality.md measures
     // 0.5–2), from outside only without it.
     float kappa_shadow = 1.0f;
-    // RMS spread (radians) of the fibres' tangents about the shell's tangent: the lighting averages a ring of
-    // tangents at this angle (shaders/gl/shell_light.glsl); < 0: the style's own, measured from its strands
-    // (ShellStats::tangent_spread). 0 lights every fibre as if it lay along its cluster's axis.
+    // The fibres' tangents about their cluster's axis (shaders/lighting/fibre_tangents.glsl): < 0, the style's
+    // own tilts, measured from its strands at every lighting sample (ShellStats::tangent_spread is their RMS);
+    // > 0, a ring of this RMS angle (radians) instead; 0 lights every fibre as if it lay along the axis.
     float tangent_spread = -1.0f;
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)

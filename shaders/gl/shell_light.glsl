@@ -26,15 +26,36 @@ vec3 shell_light_weight(SrbfPoint p, int j, vec2 sh, inout float lum_visible, in
     return srbf_light_radiance(p, u_d_f, j, sh);
 }
 
-// The fibres' tangents about the cluster's (shaders/lighting/fibre_tangents.glsl): SHELL_TANGENTS of them at
-// angle u_tangent_spread (ShellSettings::tangent_spread) from T; 1 is T itself.
+// The fibres' tangents about the cluster's (shaders/lighting/fibre_tangents.glsl): SHELL_TANGENTS 4, the mean
+// over the tilts m ± a, m ± b; 1, T itself. u_tangent_spread ≥ 0 (ShellSettings::tangent_spread given) makes
+// them a ring of that RMS angle; < 0 takes the lighting samples' measured tilts (m, a, b).
 #ifndef SHELL_TANGENTS
 #define SHELL_TANGENTS 1
 #endif
-uniform float u_tangent_spread;  // σ, radians
+uniform float u_tangent_spread;  // σ, radians; < 0: measured
 
-void shell_fibre_tangent(vec3 T, vec3 r0, vec3 V, int q, out vec3 Tq, out vec3 rq) {
-    fibre_tangent(T, r0, V, u_tangent_spread, q, SHELL_TANGENTS, Tq, rq);
+void shell_fibre_tilts(vec3 T, vec3 r0, vec3 V, inout vec3 m, inout vec3 a, inout vec3 b) {
+    if (u_tangent_spread >= 0.0) {
+        m = vec3(0.0);
+        fibre_ring_axes(T, r0, V, u_tangent_spread, a, b);
+    }
+}
+
+// Light j's weight at a fibre point (T, r0) seen along V, the mean over its fibres' tangents (tilts m, a, b).
+vec3 shell_light_weight_fibres(HairParams hp, vec3 V, vec3 T, vec3 r0, vec3 m, vec3 a, vec3 b, int j, vec2 sh,
+                               inout float lum_visible, inout float lum_total) {
+#if SHELL_TANGENTS == 1
+    return shell_light_weight(srbf_point(hp, V, T, r0), j, sh, lum_visible, lum_total);
+#else
+    vec3 w = vec3(0.0);
+    for (int q = 0; q < SHELL_TANGENTS; ++q) {
+        vec3 Tq;
+        vec3 rq;
+        fibre_tangent(T, r0, fibre_tilt(m, a, b, q), Tq, rq);
+        w += shell_light_weight(srbf_point(hp, V, Tq, rq), j, sh, lum_visible, lum_total);
+    }
+    return w * (1.0 / float(SHELL_TANGENTS));
+#endif
 }
 
 // λ' = λ_j over the length of the light direction projected on the normal plane of T: the light's

@@ -4,7 +4,8 @@
 // srbf_shadowed.glsl: 000 eq. 2–5 in Zinke's split) with T̃_j and the fibres met n_j from the shadow
 // pass (shell_shadow.comp; T̃ = 1, n = 0 when shadows between clusters are off), and the light's in-plane
 // azimuth ψ_j in the fixed frame (r0, T × r0) (shaders/gl/sector_frame.glsl). w_j is the mean over the
-// fibres' tangents about T (shell_fibre_tangent in shell_light.glsl, SHELL_TANGENTS of them). Stored:
+// fibres' tangents about T (shaders/lighting/fibre_tangents.glsl: the sample's measured tilts, or a ring of
+// u_tangent_spread; SHELL_TANGENTS of them). Stored:
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
@@ -43,13 +44,19 @@ void main() {
     float total = 0.0;
     float own_weight = 0.0;  // Σ_j lum(w_j) own_cluster_stretch(l_j) and Σ_j lum(w_j)
     float own_norm = 0.0;
-    // The fibres' tangents about T (shell_fibre_tangent): each is lit with its own angles; the light's azimuth ψ_j
+    // The fibres' tangents about T (shell_light.glsl): each is lit with its own angles; the light's azimuth ψ_j
     // stays in the axis frame, where re meets it. The lum-weighted sums below are ratios, so summing them over the
     // tangents leaves them means.
+    vec3 tm = s.tilt_mean.xyz;
+    vec3 ta = s.tilt_a.xyz;
+    vec3 tb = s.tilt_b.xyz;
+    shell_fibre_tilts(T, r0, V, tm, ta, tb);
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
-        vec3 Tq;
-        vec3 rq;
-        shell_fibre_tangent(T, r0, V, q, Tq, rq);
+        vec3 Tq = T;
+        vec3 rq = r0;
+#if SHELL_TANGENTS > 1
+        fibre_tangent(T, r0, fibre_tilt(tm, ta, tb, q), Tq, rq);
+#endif
         SrbfPoint p = srbf_point(hp, V, Tq, rq);
         for (int j = 0; j < u_light_count; ++j) {
             vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);

@@ -60,6 +60,7 @@
 
 #if SHELL_LIGHTING == 2
 #include "shaders/gl/shell_light.glsl"
+#include "shaders/gl/lighting_samples.glsl"
 #endif
 #include "shaders/gl/shell_lighting_fetch.glsl"
 #if SHELL_LIGHTING == 1
@@ -190,6 +191,11 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     if (u_absorption_on != 0)
         hp.sigma_a = mix(texelFetch(u_absorption, ivec2(row, int(info.y)), 0).rgb,
                          texelFetch(u_absorption, ivec2(row + 1, int(info.y)), 0).rgb, f);
+    // The fibres' tilts between the two lighting samples around t (or the ring of u_tangent_spread).
+    vec3 tm = mix(samples[first].tilt_mean.xyz, samples[first + 1].tilt_mean.xyz, f);
+    vec3 ta = mix(samples[first].tilt_a.xyz, samples[first + 1].tilt_a.xyz, f);
+    vec3 tb = mix(samples[first].tilt_b.xyz, samples[first + 1].tilt_b.xyz, f);
+    shell_fibre_tilts(T, r, V, tm, ta, tb);
     vec3 lit = vec3(0.0);
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
@@ -198,14 +204,8 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         vec2 sh = vec2(1.0, 0.0);
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
-        // The mean over the fibres' tangents about T, as in the lighting pass (shell_fibre_tangent).
-        vec3 wj = vec3(0.0);
-        for (int q = 0; q < SHELL_TANGENTS; ++q) {
-            vec3 Tq;
-            vec3 rq;
-            shell_fibre_tangent(T, r, V, q, Tq, rq);
-            wj += shell_light_weight(srbf_point(hp, V, Tq, rq), j, sh, visible, total) * (1.0 / float(SHELL_TANGENTS));
-        }
+        // The mean over the fibres' tangents about T, as in the lighting pass.
+        vec3 wj = shell_light_weight_fibres(hp, V, T, r, tm, ta, tb, j, sh, visible, total);
         float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
         float lp = shell_light_spread(j, T);
         float d1 = exp(-0.25 * lp * lp);

@@ -23,21 +23,28 @@ Strands straight_strands(int count, float length) {
     return s;
 }
 
-TEST(TangentSpread, IsTheRmsAngleAboutTheOwnClustersAxis) {
-    // Two clusters, each an axis along −y sampled at 9 rows (placed 1 apart in x), the shells' lighting samples.
-    PreparedShells shells;
-    shells.cluster_proto = {0, 0};
-    shells.lighting_rows = 9;
-    for (int c = 0; c < 2; ++c)
-        for (int r = 0; r < 9; ++r)
-            shells.samples.push_back({glm::vec4(float(c), -0.5f * float(r), 0.0f, 0.1f), glm::vec4(0, -1, 0, 0), glm::vec4(1, 0, 0, 0)});
-    // Straight strands along the axes: spread 0 (float rounding: 1e-3 rad).
+TEST(FibreTilts, AreTheMomentsOfTheStrandsTiltsAboutTheOwnClustersAxis) {
+    // Two clusters, each an axis along −y sampled at 9 rows (placed 1 apart in x): the shells' lighting samples,
+    // with the frame normal +x (so a tilt's components are along +x and T × +x = +z).
+    const auto axes = [] {
+        PreparedShells shells;
+        shells.cluster_proto = {0, 0};
+        shells.lighting_rows = 9;
+        for (int c = 0; c < 2; ++c)
+            for (int r = 0; r < 9; ++r)
+                shells.samples.push_back({glm::vec4(float(c), -0.5f * float(r), 0.0f, 0.1f), glm::vec4(0, -1, 0, 0), glm::vec4(1, 0, 0, 0)});
+        return shells;
+    };
+    // Straight strands along the axes: no tilt (float rounding: 1e-3 rad).
+    PreparedShells shells = axes();
     const Strands straight = straight_strands(20, 4.0f);
     std::vector<std::uint32_t> cluster(straight.strand_count(), 0u);
-    EXPECT_NEAR(tangent_spread_about_axes(shells, straight, cluster, glm::mat3(1.0f)), 0.0f, 1e-3f);
-    // Zigzags of ±δ about −y: every segment is δ off its axis, so the RMS is δ (float rounding of acos: 1e-4 rad),
-    // whichever cluster they belong to, and turned with their axes (the orientation applies to the strands only,
-    // so a quarter turn about y leaves −y and δ as they are).
+    EXPECT_NEAR(measure_fibre_tilts(shells, straight, cluster, glm::mat3(1.0f)), 0.0f, 1e-3f);
+    EXPECT_LT(glm::length(glm::vec3(shells.samples[4].tilt_a)), 1e-3f);
+    // Zigzags of ±δ about −y in the x-y plane: every segment is δ off its axis, so the RMS is δ (float rounding of
+    // acos: 1e-4 rad), whichever cluster they belong to. Their tilts are ±δ along x: mean 0 and a = √2 δ x̂ (the
+    // four tilts ±a, ±b then have the second moment δ² x̂x̂ᵀ), b = 0. A quarter turn of the strands about y puts the
+    // tilts along z.
     const float delta = 0.35f;
     Strands z;
     z.offsets.push_back(0);
@@ -51,12 +58,21 @@ TEST(TangentSpread, IsTheRmsAngleAboutTheOwnClustersAxis) {
         z.offsets.push_back(static_cast<std::uint32_t>(z.points.size()));
     }
     const std::vector<std::uint32_t> own{0u, 1u, 0u, 1u};
-    EXPECT_NEAR(tangent_spread_about_axes(shells, z, own, glm::mat3(1.0f)), delta, 1e-4f);
+    EXPECT_NEAR(measure_fibre_tilts(shells, z, own, glm::mat3(1.0f)), delta, 1e-4f);
+    for (const std::size_t i : {std::size_t(2), std::size_t(13)}) {  // a sample of each cluster
+        const LightingSample& q = shells.samples[i];
+        EXPECT_LT(glm::length(glm::vec3(q.tilt_mean)), 0.05f) << i;  // a row of 13 segments: one more of one sense, δ/13
+        EXPECT_NEAR(std::abs(q.tilt_a.x), std::sqrt(2.0f) * delta, 0.01f) << i;
+        EXPECT_NEAR(q.tilt_a.z, 0.0f, 1e-4f) << i;
+        EXPECT_LT(glm::length(glm::vec3(q.tilt_b)), 1e-3f) << i;
+    }
     const glm::mat3 quarter = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0)));
-    EXPECT_NEAR(tangent_spread_about_axes(shells, z, own, quarter), delta, 1e-4f);
+    EXPECT_NEAR(measure_fibre_tilts(shells, z, own, quarter), delta, 1e-4f);
+    EXPECT_NEAR(std::abs(shells.samples[2].tilt_a.z), std::sqrt(2.0f) * delta, 0.01f);
+    EXPECT_NEAR(shells.samples[2].tilt_a.x, 0.0f, 1e-4f);
     // A strand's cluster must exist, and every strand needs one.
-    EXPECT_THROW(tangent_spread_about_axes(shells, z, std::vector<std::uint32_t>{0u, 1u, 2u, 0u}, glm::mat3(1.0f)), Error);
-    EXPECT_THROW(tangent_spread_about_axes(shells, z, std::vector<std::uint32_t>{0u, 1u}, glm::mat3(1.0f)), Error);
+    EXPECT_THROW(measure_fibre_tilts(shells, z, std::vector<std::uint32_t>{0u, 1u, 2u, 0u}, glm::mat3(1.0f)), Error);
+    EXPECT_THROW(measure_fibre_tilts(shells, z, std::vector<std::uint32_t>{0u, 1u}, glm::mat3(1.0f)), Error);
 }
 
 TEST(ShadowGrid, KeepsTheStrandsLength) {

@@ -35,10 +35,28 @@ Camera front_camera(const gl::ShellRenderer& r, int w = 96, int h = 64) {
     return Camera::orbit(r.bounds_min(), r.bounds_max(), 0.3f, 0.2f, w, h);
 }
 
+// The one cluster of one_cluster_style, its cross-section turned by 180° from root to tip: its strands wind about
+// the axis, tilted across it by up to atan(π · 1 cm / 10 cm) ≈ 17° at the rim.
+HairStyle twisted_cluster_style() {
+    const char* text = R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0, 90, 180], "density": {"kind": "uniform", "value": 0.5}}]})";
+    return parse_style(text, "<twisted cluster>");
+}
+
 TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     auto context = gl::Context::headless();
-    const HairStyle style = one_cluster_style();
+    {
+        // The straight cluster's sampled strands lie along its axis: no spread of their own (float rounding).
+        gl::ShellRenderer straight(one_cluster_style(), test_index(), glm::mat3(1.0f));
+        EXPECT_LT(straight.stats().tangent_spread, 1e-3f);
+    }
+    // The twisted one's wind about it, so that the measured tilts are not zero.
+    const HairStyle style = twisted_cluster_style();
     gl::ShellRenderer renderer(style, test_index(), glm::mat3(1.0f));
+    std::printf("twisted cluster: RMS tilt %.1f deg\n", double(renderer.stats().tangent_spread) * 180.0 / std::numbers::pi);
+    EXPECT_GT(renderer.stats().tangent_spread, 0.1f);
     SrbfLight light;
     light.L = glm::vec3(1.0f, 0.8f, 0.6f);
     light.omega = glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
@@ -48,11 +66,9 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     const Camera camera = front_camera(renderer);
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
-    // The straight cluster's sampled strands lie along its axis: no spread of their own (float rounding).
-    EXPECT_LT(renderer.stats().tangent_spread, 1e-3f);
-    // Without a spread, and with one: the lighting is then the mean over the ring of fibre tangents
-    // (shaders/lighting/fibre_tangents.glsl, four of them in the lighting pass), here taken on the CPU.
-    for (const float spread : {0.0f, 0.5f})
+    // Without a spread, a ring of 0.5 rad and the measured tilts (-1): the lighting is then the mean over four
+    // fibre tangents (shaders/lighting/fibre_tangents.glsl), here taken on the CPU.
+    for (const float spread : {0.0f, 0.5f, -1.0f})
     for (const bool multiple : {false, true}) {
     gl::ShellSettings settings;
     settings.hair.multiple = multiple;
@@ -61,17 +77,23 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     renderer.draw(camera, settings);
     const std::vector<float> lit = renderer.read_lighting();
     const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
-    const int tangents = spread > 0.0f ? 4 : 1;
+    const int tangents = spread != 0.0f ? 4 : 1;
     double worst = 0;
     for (int r = 0; r < renderer.lighting_rows(); ++r) {
         const std::vector<glm::vec3> s = renderer.lighting_sample(static_cast<std::size_t>(r));
         const glm::vec3 view = glm::normalize(camera.eye - s[0]);
         const glm::vec3 T = glm::normalize(s[1]);
         const glm::vec3 r0 = glm::normalize(s[2] - glm::dot(s[2], T) * T);
+        const LightingSample& sample = renderer.prepared().samples[static_cast<std::size_t>(r)];
+        glm::vec3 m(sample.tilt_mean), a(sample.tilt_a), b(sample.tilt_b);
+        if (spread >= 0.0f) {
+            m = glm::vec3(0.0f);
+            glsl::fibre_ring_axes(T, r0, view, spread, a, b);
+        }
         glm::vec3 want(0.0f);
         for (int q = 0; q < tangents; ++q) {
-            glm::vec3 Tq, rq;
-            glsl::fibre_tangent(T, r0, view, spread, q, tangents, Tq, rq);
+            glm::vec3 Tq = T, rq = r0;
+            if (tangents > 1) glsl::fibre_tangent(T, r0, glsl::fibre_tilt(m, a, b, q), Tq, rq);
             want += ev.shade(shading::FibreFrame::from_tangent(Tq, rq), view, std::span(&light, 1), {}, multiple).total() /
                     float(tangents);
         }
