@@ -166,7 +166,6 @@ void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera
     glUniform1i(program.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(program.uniform("u_rows"), gpu.lighting_rows);
     glUniform3fv(program.uniform("u_eye"), 1, &camera.eye.x);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(static_cast<GLuint>((gpu.sample_count + 31) / 32), 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

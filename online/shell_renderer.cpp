@@ -68,7 +68,6 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     stats_.grid_y = grid.dims.y;
     stats_.grid_z = grid.dims.z;
     stats_.voxel = grid.voxel;
-
     bounds_min_ = p.bounds_min;
     bounds_max_ = p.bounds_max;
     if (sampled_strands) *sampled_strands = std::move(strands);
