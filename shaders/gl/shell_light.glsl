@@ -44,18 +44,14 @@ void shell_fibre_tilts(vec3 T, vec3 r0, vec3 V, inout vec3 m, inout vec3 a, inou
 // Light j's weight at a fibre point (T, r0) seen along V, the mean over its fibres' tangents (tilts m, a, b).
 vec3 shell_light_weight_fibres(HairParams hp, vec3 V, vec3 T, vec3 r0, vec3 m, vec3 a, vec3 b, int j, vec2 sh,
                                inout float lum_visible, inout float lum_total) {
-#if SHELL_TANGENTS == 1
-    return shell_light_weight(srbf_point(hp, V, T, r0), j, sh, lum_visible, lum_total);
-#else
     vec3 w = vec3(0.0);
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
         vec3 Tq;
         vec3 rq;
-        fibre_tangent(T, r0, fibre_tilt(m, a, b, q), Tq, rq);
+        fibre_tangent_of(T, r0, m, a, b, q, SHELL_TANGENTS, Tq, rq);
         w += shell_light_weight(srbf_point(hp, V, Tq, rq), j, sh, lum_visible, lum_total);
     }
     return w * (1.0 / float(SHELL_TANGENTS));
-#endif
 }
 
 // λ' = λ_j over the length of the light direction projected on the normal plane of T: the light's

@@ -52,11 +52,9 @@ void main() {
     vec3 tb = s.tilt_b.xyz;
     shell_fibre_tilts(T, r0, V, tm, ta, tb);
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
-        vec3 Tq = T;
-        vec3 rq = r0;
-#if SHELL_TANGENTS > 1
-        fibre_tangent(T, r0, fibre_tilt(tm, ta, tb, q), Tq, rq);
-#endif
+        vec3 Tq;
+        vec3 rq;
+        fibre_tangent_of(T, r0, tm, ta, tb, q, SHELL_TANGENTS, Tq, rq);
         SrbfPoint p = srbf_point(hp, V, Tq, rq);
         for (int j = 0; j < u_light_count; ++j) {
             vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);

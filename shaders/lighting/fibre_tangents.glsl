@@ -47,4 +47,14 @@ COIF_FN void fibre_tangent(vec3 T, vec3 r0, vec3 v, OUT(vec3) Tq, OUT(vec3) rq) 
     rq = normalize(r0 - dot(r0, Tq) * Tq);
 }
 
+// Tangent q of n (q < n) and its normal: T itself when n is 1, else the tangent tilted by tilt q of the four.
+COIF_FN void fibre_tangent_of(vec3 T, vec3 r0, vec3 m, vec3 a, vec3 b, int q, int n, OUT(vec3) Tq, OUT(vec3) rq) {
+    if (n <= 1) {
+        Tq = T;
+        rq = r0;
+        return;
+    }
+    fibre_tangent(T, r0, fibre_tilt(m, a, b, q), Tq, rq);
+}
+
 #endif

@@ -92,8 +92,8 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
         }
         glm::vec3 want(0.0f);
         for (int q = 0; q < tangents; ++q) {
-            glm::vec3 Tq = T, rq = r0;
-            if (tangents > 1) glsl::fibre_tangent(T, r0, glsl::fibre_tilt(m, a, b, q), Tq, rq);
+            glm::vec3 Tq, rq;
+            glsl::fibre_tangent_of(T, r0, m, a, b, q, tangents, Tq, rq);
             want += ev.shade(shading::FibreFrame::from_tangent(Tq, rq), view, std::span(&light, 1), {}, multiple).total() /
                     float(tangents);
         }
