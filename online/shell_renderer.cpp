@@ -7,7 +7,6 @@
 
 #include "models/core/error.h"
 #include "models/core/units.h"
-#include "models/style_strands.h"
 #include "online/shell_passes.h"
 #include "online/shells/record_atlas.h"
 #include "online/shells/shadow_grid.h"
@@ -15,8 +14,6 @@
 
 namespace coif::gl {
 namespace {
-
-constexpr int kShadowGridSize = 64;  // voxels along the hair's longest axis (docs/renderer.md: error and cost)
 
 using Clock = std::chrono::steady_clock;
 
@@ -34,24 +31,17 @@ struct ShellRenderer::Impl {
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
 };
 
-ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
-                             int lighting_rows_per_hsv, Strands* sampled_strands)
-    : impl_(std::make_unique<Impl>()) {
+ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>()) {
     const auto start = Clock::now();
     Impl& m = *impl_;
-    const HrirDatabase& db = satf.database();
-    if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
-    const RecordAtlas atlas = pack_record_atlas(db);
-    m.shells = prepare_shells(style, satf, atlas.mean_alpha, orientation, lighting_rows_per_hsv);
-    // The shadow grid (decision 5): the strands the reference renderer draws, voxelized.
-    std::vector<std::uint32_t> strand_cluster;
-    Strands strands = sample_strands(style, StrandSampling{}, &strand_cluster);
-    const DensityGrid grid = voxelize_strands(strands, orientation, kShadowGridSize);
-    // How the same strands' tangents tilt about each lighting sample's, for the lighting (before the upload).
-    stats_.tangent_spread = measure_fibre_tilts(m.shells, strands, strand_cluster, orientation);
-    // coif reference's radius is of the strands as it draws them: turned, as the grid holds them.
-    stats_.auto_fiber_radius = auto_fiber_radius(glm::dvec3(grid.strands_min), glm::dvec3(grid.strands_max));
-    m.gpu = std::make_unique<ShellGpu>(m.shells, atlas, grid, db.path().string());
+    if (cooked.shells.clusters() == 0) throw Error(cooked.source, "clusters", "the hair has no clusters");
+    const RecordAtlas& atlas = cooked.atlas;
+    const DensityGrid& grid = cooked.grid;
+    const auto upload = Clock::now();
+    m.gpu = std::make_unique<ShellGpu>(cooked.shells, atlas, grid, cooked.source);
+    glFinish();  // the upload's copies done, so that upload_seconds holds them
+    stats_.upload_seconds = std::chrono::duration<double>(Clock::now() - upload).count();
+    m.shells = std::move(cooked.shells);
 
     const PreparedShells& p = m.shells;
     stats_.clusters = p.clusters();
@@ -59,18 +49,20 @@ ShellRenderer::ShellRenderer(const HairStyle& style, const SatfIndex& satf, cons
     stats_.sectors = p.sectors.size();
     stats_.triangles = p.triangles;
     stats_.lighting_samples = p.samples.size();
-    stats_.records = db.size();
+    stats_.records = atlas.mean_alpha.size();
+    stats_.database_records = cooked.database_records;
     stats_.atlas_width = atlas.width;
     stats_.atlas_height = atlas.height;
     stats_.re_norm = atlas.re_norm;
-    stats_.shadow_strands = strands.strand_count();
+    stats_.shadow_strands = cooked.shadow_strands;
     stats_.grid_x = grid.dims.x;
     stats_.grid_y = grid.dims.y;
     stats_.grid_z = grid.dims.z;
     stats_.voxel = grid.voxel;
+    stats_.tangent_spread = cooked.tangent_spread;
+    stats_.auto_fiber_radius = cooked.auto_fiber_radius;
     bounds_min_ = p.bounds_min;
     bounds_max_ = p.bounds_max;
-    if (sampled_strands) *sampled_strands = std::move(strands);
     stats_.prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 }
 

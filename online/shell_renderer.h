@@ -4,13 +4,13 @@
 // within-cluster shadow of 004 eq. 12, and alpha compositing (004 eq. 14). docs/renderer.md states
 // the choices and their measured cost and error.
 //
-// Once per hairstyle (constructor), on the CPU (GL-free, online/shells/):
+// Once per hairstyle, cooked on the CPU (GL-free: online/scene/cook.h from a style and the database, or read from
+// a `.coif` asset, online/shells/hair_asset.h), then uploaded by the constructor (online/shell_passes.h ShellGpu):
 //   - prepared_shells.h: the prototypes' layer meshes, their sectors' SATF look-ups and shadow sums, and
 //     every cluster's placement (one GL instance each) and lighting samples along its axis;
-//   - record_atlas.h: the database's records as one RGBA8 texture atlas (layout shaders/gl/record_atlas.glsl),
+//   - record_atlas.h: the records the sectors use as one RGBA8 texture atlas (layout shaders/gl/record_atlas.glsl),
 //     so x and θv are interpolated by the bilinear fetch;
-//   - shadow_grid.h: the style's strands voxelized for the shadows between clusters;
-// then uploaded (online/shell_passes.h ShellGpu).
+//   - shadow_grid.h: the style's strands voxelized for the shadows between clusters.
 // Per frame (online/shell_passes.h): a compute pass evaluates the SRBF lighting per lighting sample and light and folds it
 // into the 9 Fourier sums of DESIGN.md decision 1 (shaders/gl/shell_lighting.comp); then the shells
 // are composited (004 eq. 14) as ShellSettings::compositing says (decision 4, docs/renderer.md):
@@ -43,23 +43,24 @@
 #include <string>
 #include <vector>
 
-#include "db/satf.h"
 #include "models/absorption_map.h"
 #include "models/core/camera.h"
 #include "models/core/image.h"
-#include "models/hair_style.h"
-#include "models/strands.h"
-#include "offline/srbf_lights.h"
 #include "online/fragment_lists.h"
+#include "online/shells/hair_asset.h"
 #include "online/shells/prepared_shells.h"
 #include "online/shells/shell_settings.h"
+#include "shaders/srbf_light.h"
 
 namespace coif::gl {
 
 struct ShellStats {
-    std::size_t clusters = 0, prototypes = 0, sectors = 0, triangles = 0, lighting_samples = 0, records = 0;
+    std::size_t clusters = 0, prototypes = 0, sectors = 0, triangles = 0, lighting_samples = 0;
+    std::size_t records = 0;           // in the atlas: those the sectors use
+    std::size_t database_records = 0;  // of the database the hair was cooked against
     int atlas_width = 0, atlas_height = 0;
-    double prepare_seconds = 0;  // densities, features, look-up and upload
+    double prepare_seconds = 0;  // the constructor: the upload and the compilation of the passes' first programs
+    double upload_seconds = 0;   // of which the buffers' and textures' upload (glFinish after it)
     float re_norm = 1;           // Σ mean re a_0 / Σ mean α over the database (see docs/renderer.md)
     std::size_t shadow_strands = 0;  // strands voxelized for the shadow grid
     int grid_x = 0, grid_y = 0, grid_z = 0;
@@ -83,12 +84,10 @@ struct ShellTimings {
 
 class ShellRenderer {
 public:
-    // Needs a current GL 4.5 context. `satf` (and its database) must outlive the renderer.
-    // `lighting_rows_per_hsv`: lighting samples per HSV along t (0: the layout's mesh_t, one per mesh row).
-    // `sampled_strands`, if given, receives the strands sampled for the shadow grid (models/style_strands.h,
-    // StrandSampling{}; the style's axes, not turned by `orientation`), so that a caller need not sample again.
-    ShellRenderer(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation, int lighting_rows_per_hsv = 0,
-                  Strands* sampled_strands = nullptr);
+    // Needs a current GL 4.5 context. Uploads a cooked hair (online/shells/hair_asset.h: cooked from a style by
+    // online/scene/cook.h, or read from a `.coif` asset); throws coif::Error if it has no clusters or exceeds the
+    // GPU's limits.
+    explicit ShellRenderer(CookedShells cooked);
     ~ShellRenderer();
     ShellRenderer(const ShellRenderer&) = delete;
     ShellRenderer& operator=(const ShellRenderer&) = delete;

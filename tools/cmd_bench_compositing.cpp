@@ -10,7 +10,7 @@
 #include "online/fragment_lists.h"
 #include "models/core/statistics.h"
 #include "online/gl_context.h"
-#include "online/hair_scene.h"
+#include "online/scene/hair_scene.h"
 #include "online/shell_renderer.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"

@@ -11,7 +11,7 @@
 #include "models/style_fit.h"
 #include "online/benchmarks.h"
 #include "online/gl_context.h"
-#include "online/hair_scene.h"
+#include "online/scene/hair_scene.h"
 #include "online/shell_renderer.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"
@@ -117,7 +117,7 @@ void add_bench_render(CLI::App& root) {
             {"renderer", scene.context->renderer()}, {"width", o->scene.width}, {"height", o->scene.height},
             {"samples", settings.samples}, {"lights", scene.lights.size()}, {"lights_source", scene.lights_label},
             {"multiple_scattering", settings.hair.multiple}, {"shadows_between_clusters", settings.shadows},
-            {"neighbours", settings.neighbours}, {"records", scene.db.size()}, {"frames", o->frames}, {"scenes", rows}};
+            {"neighbours", settings.neighbours}, {"records", scene.renderer->stats().database_records}, {"frames", o->frames}, {"scenes", rows}};
         if (o->json) {
             std::printf("%s\n", j.dump(2).c_str());
             return;

@@ -14,7 +14,7 @@
 #include "models/core/image.h"
 #include "offline/srbf_lights.h"
 #include "online/gl_context.h"
-#include "online/hair_scene.h"
+#include "online/scene/hair_scene.h"
 #include "online/shell_renderer.h"
 #include "online/strand_renderer.h"
 #include "db/coverage.h"
@@ -174,17 +174,21 @@ void add_render(CLI::App& root) {
         }
         // Everything that can be refused is read before anything is rendered or written.
         if (o->alpha) throw coif::Error::parameter("option --alpha", "only the strand lines (--strands, --preview-strands) write straight alpha");
-        coif::gl::ShellSettings settings;
+        const auto t_inputs = std::chrono::steady_clock::now();
+        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
+        const double inputs_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_inputs).count();
+        const bool from_asset = inputs.cooked.has_value();
+        // An asset's baked parameters are the base that --params and the options change.
+        coif::gl::ShellSettings settings = inputs.cooked ? inputs.cooked->defaults : coif::gl::ShellSettings{};
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
         if (o->radius > 0) settings.fiber_radius = o->radius;
         settings.background = coif::cli::background_color(o->background);
         if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
-        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
         inputs.lights = coif::rotate_srbf_lights_y(inputs.lights, coif::cli::lights_rotation(o->rotate_lights_deg));
         std::optional<coif::AbsorptionMap> absorption;
-        if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.style.clusters.size());
+        if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.clusters());
         coif::gl::HairScene scene(
             coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr));
         coif::gl::ShellRenderer& renderer = *scene.renderer;
@@ -192,11 +196,11 @@ void add_render(CLI::App& root) {
         // Sectors the database does not cover (sparse styles): say so before drawing them.
         std::vector<std::string> warnings;
         nlohmann::json coverage_json = nullptr;
-        if (!scene.db.is_shard()) {
+        if (scene.db && !scene.db->is_shard()) {
             coif::CoverageOptions copt;
             copt.held_out = kCoverageHeldOut;
             const coif::CoverageReport cov = coif::database_coverage(
-                scene.db, coif::style_sector_features(scene.style), coif::held_out_sector_features(scene.db.params(), copt.held_out), copt);
+                *scene.db, coif::style_sector_features(scene.style), coif::held_out_sector_features(scene.db->params(), copt.held_out), copt);
             coverage_json = {{"share_beyond_held_out_p95", cov.style_beyond_held_out_p95},
                              {"share_beyond_held_out_p95_nonempty", cov.style_beyond_held_out_p95_nonempty},
                              {"held_out_sectors", copt.held_out}};
@@ -215,7 +219,7 @@ void add_render(CLI::App& root) {
         const coif::Image image = renderer.render(camera, settings);
         const double render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_render).count();
         wo.description = "coif render: SATF shells, SRBF Marschner lighting; style " + o->scene.style + "; database " +
-                         scene.db.path().string() + "; lights " + scene.lights_label;
+                         scene.database_label + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
         const auto& st = renderer.stats();
         if (o->json)
@@ -224,7 +228,7 @@ void add_render(CLI::App& root) {
                                    {"width", camera.width},
                                    {"height", camera.height},
                                    {"style", o->scene.style},
-                                   {"database", scene.db.path().string()},
+                                   {"database", scene.database_label},
                                    {"clusters", st.clusters},
                                    {"sectors", st.sectors},
                                    {"triangles", st.triangles},
@@ -233,6 +237,10 @@ void add_render(CLI::App& root) {
                                    {"tangent_spread_deg", coif::degrees(double(renderer.tangent_spread(settings)))},
                                    {"fiber_radius", renderer.fiber_radius(settings)},
                                    {"coverage", coverage_json},
+                                   {"load", {{"inputs_milliseconds", inputs_ms},
+                                             {"asset", from_asset},
+                                             {"upload_milliseconds", 1e3 * st.upload_seconds},
+                                             {"renderer_milliseconds", 1e3 * st.prepare_seconds}}},
                                    {"warnings", warnings}});
         const coif::gl::ShellTimings& t = renderer.timings();
         std::fprintf(stderr,
@@ -241,6 +249,8 @@ void add_render(CLI::App& root) {
                      o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, scene.lights.size(), camera.width,
                      camera.height, scene.context->renderer().c_str(), render_ms, t.lighting_wall_ms, t.shells_wall_ms,
                      st.prepare_seconds, o->output.c_str());
+        std::fprintf(stderr, "loading: %s and lights read in %.1f ms; upload %.1f ms (with the first programs' compilation %.1f ms)\n",
+                     from_asset ? "asset" : "style", inputs_ms, 1e3 * st.upload_seconds, 1e3 * st.prepare_seconds);
         if (const int f = coif::gl::supersampling(settings); f > 1)
             std::fprintf(stderr, "antialiased: %d frames shifted within the pixel, averaged (--samples %d; 1 for one frame)\n",
                          f * f, settings.samples);

@@ -9,7 +9,7 @@
 #include "models/style_strands.h"
 #include "offline/envmap.h"
 #include "offline/srbf_fit.h"
-#include "online/hair_scene.h"
+#include "online/scene/hair_scene.h"
 #include "tools/assets.h"
 
 namespace coif::cli {
@@ -54,7 +54,8 @@ HairStyle load_style(const std::string& path) {
 }
 
 void SceneOptions::add_to(CLI::App* app) {
-    app->add_option("--style", style, "Cluster hairstyle (JSON) to draw, or @default for the embedded one");
+    app->add_option("--style", style,
+                    "Cluster hairstyle (JSON) to draw, @default for the embedded one, or a cooked .coif asset (coif bake)");
     app->add_option("--strands", strands, "Draw this strand file (" + coif::strand_extensions() + ") instead of a style");
     app->add_option("--width", width, "Image width in pixels")->check(CLI::Range(1, kMaxRenderSide));
     app->add_option("--height", height, "Image height in pixels")->check(CLI::Range(1, kMaxRenderSide));
@@ -128,7 +129,8 @@ std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* l
 SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env) {
     SceneInputs in;
     in.lights = load_render_lights(env, &in.lights_label);
-    in.style = load_style(scene.style);
+    if (scene.style != kDefaultStyleName && is_hair_asset(scene.style)) in.cooked = read_hair_asset(scene.style);
+    else in.style = load_style(scene.style);
     return in;
 }
 
@@ -136,6 +138,7 @@ gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs,
                                   int lighting_rows, const AbsorptionMap* absorption) {
     gl::HairSceneDesc d;
     d.style = std::move(inputs.style);
+    d.cooked = std::move(inputs.cooked);
     d.lights = std::move(inputs.lights);
     d.lights_label = std::move(inputs.lights_label);
     d.database = db_path;

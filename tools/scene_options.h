@@ -1,7 +1,8 @@
 #pragma once
 // Options shared by the commands that draw a scene (render, view, reference, bench): which strands, the camera,
-// and for the shell commands the lights and the scene (online/hair_scene.h) built from them.
+// and for the shell commands the lights and the scene (online/scene/hair_scene.h) built from them.
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,12 +10,13 @@
 #include "models/absorption_map.h"
 #include "models/core/camera.h"
 #include "models/hair_style.h"
+#include "online/shells/hair_asset.h"
 #include "models/strands.h"
 #include "offline/srbf_lights.h"
 #include "tools/cli.h"
 
 namespace coif::gl {
-struct SceneFraming;   // online/hair_scene.h (only the shell commands need it, and GL with it)
+struct SceneFraming;   // online/scene/hair_scene.h (only the shell commands need it, and GL with it)
 struct HairSceneDesc;
 }  // namespace coif::gl
 
@@ -71,7 +73,9 @@ std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* l
 struct SceneInputs {
     std::string lights_label;
     std::vector<SrbfLight> lights;
-    HairStyle style;
+    HairStyle style;                     // empty when --style names a `.coif` asset
+    std::optional<CookedShells> cooked;  // the asset, when --style names one (online/shells/hair_asset.h)
+    std::size_t clusters() const { return cooked ? cooked->shells.clusters() : style.clusters.size(); }
 };
 SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env);
 

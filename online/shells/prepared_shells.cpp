@@ -4,11 +4,9 @@
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
-#include <numeric>
 #include <string>
 
 #include "models/core/error.h"
-#include "models/sector_features.h"
 #include "models/strands.h"
 
 namespace coif {
@@ -19,22 +17,6 @@ glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
     glm::mat4 m(orientation * r * static_cast<float>(s.scale));
     m[3] = glm::vec4(orientation * glm::vec3(s.translation), 1.0f);
     return m;
-}
-
-// The best kMaxShellNeighbours of a look-up, best first, and the match's mean α (Σ weight · ᾱ over all k).
-ShellSector shell_sector(const SectorMatch& mt, std::span<const float> mean_alpha, float* sector_alpha) {
-    std::vector<int> order(mt.k);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return mt.weight[a] > mt.weight[b]; });
-    ShellSector gs;
-    for (int n = 0; n < std::min(mt.k, gl::kMaxShellNeighbours); ++n) {
-        gs.id[n] = mt.id[order[n]];
-        gs.weight[n] = mt.weight[order[n]];
-    }
-    double a = 0;
-    for (int n = 0; n < mt.k; ++n) a += mt.weight[n] * mean_alpha[mt.id[n]];
-    *sector_alpha = static_cast<float>(a);
-    return gs;
 }
 
 }  // namespace
@@ -48,72 +30,6 @@ glm::mat3 style_orientation(const HairStyle& style) {
     StrandStats st;
     st.mean_root_to_tip = glm::length(sum) > 0 ? glm::normalize(sum) : glm::dvec3(0, -1, 0);
     return hang_axis_rotation(st);
-}
-
-void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha) {
-    if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
-    m.layout = style.layout;
-    const DiskLayout& L = m.layout;
-    m.prototypes.clear();
-    m.vertices.clear();
-    m.indices.clear();
-    m.triangles = 0;
-    m.cluster_proto.assign(style.clusters.size(), SIZE_MAX);
-    std::vector<std::size_t> slot_of(style.clusters.size(), SIZE_MAX);
-    for (std::size_t c = 0; c < style.clusters.size(); ++c) {
-        const std::size_t p = style.clusters[c].prototype;
-        if (slot_of[p] == SIZE_MAX) {
-            slot_of[p] = m.prototypes.size();
-            m.prototypes.push_back(p);
-        }
-        m.cluster_proto[c] = slot_of[p];
-    }
-    const std::size_t per_proto = L.sector_count();
-    const double lambda = L.gaussian_width;
-    m.sectors.assign(m.prototypes.size() * per_proto, ShellSector{});
-    m.meshes.assign(m.prototypes.size(), {});
-    for (std::size_t p = 0; p < m.prototypes.size(); ++p) {
-        const Cluster& proto = style.clusters[m.prototypes[p]];
-        const GeneralizedCylinder& shape = *proto.shape;
-        for (int j = 0; j < L.layers; ++j) {
-            const LayerMesh mesh = layer_mesh(shape, L, j);
-            MeshRange range;
-            range.first = static_cast<std::uint32_t>(m.indices.size());
-            range.count = static_cast<std::int32_t>(mesh.indices.size());
-            range.base_vertex = static_cast<std::int32_t>(m.vertices.size());
-            range.vertex_count = static_cast<std::int32_t>(mesh.position.size());
-            for (std::size_t v = 0; v < mesh.position.size(); ++v) {
-                const Frame f = shape.frame(mesh.texcoord[v].y);
-                m.vertices.push_back({mesh.position[v], mesh.tangent[v], mesh.normal[v], mesh.texcoord[v], glm::vec3(f.normal)});
-            }
-            m.indices.insert(m.indices.end(), mesh.indices.begin(), mesh.indices.end());
-            m.meshes[p].push_back(range);
-            m.triangles += mesh.indices.size() / 3;
-        }
-        const std::vector<SectorDensity> grids = cluster_sector_densities(shape, L, *proto.density);
-        std::vector<float> rows(per_proto * kRawFeatureCount);
-        for (std::size_t s = 0; s < per_proto; ++s) {
-            const SectorRef ref = sector_ref(L, s);
-            const SectorShape sh = sector_shape(shape, L, ref.plane, ref.layer, ref.sector);
-            const RawFeatures f = raw_sector_features(grids[s], sh.depth / lambda, sh.width / std::max(sh.depth, 1e-12));
-            std::copy(f.begin(), f.end(), rows.begin() + static_cast<std::ptrdiff_t>(s * kRawFeatureCount));
-        }
-        const std::vector<SectorMatch> matches = satf.match_all(rows);
-        std::vector<float> sector_alpha(per_proto, 0.0f);
-        for (std::size_t s = 0; s < per_proto; ++s)
-            m.sectors[p * per_proto + s] = shell_sector(matches[s], mean_alpha, &sector_alpha[s]);
-        for (int i = 0; i <= L.s_t; ++i)
-            for (int k = 0; k < L.s_u; ++k) {
-                float outer = 0.0f;  // Σ ᾱ of the layers outside layer j (004 eq. 12's χ(k))
-                for (int j = L.layers - 1; j >= 0; --j) {
-                    const std::size_t s = L.sector_index(i, j, k);
-                    m.sectors[p * per_proto + s].shadow.x = outer;
-                    outer += sector_alpha[s];
-                }
-                for (int j = 0; j < L.layers; ++j)  // Σ ᾱ of every layer: one radius (shaders/lighting/own_cluster.glsl)
-                    m.sectors[p * per_proto + L.sector_index(i, j, k)].shadow.y = outer;
-            }
-    }
 }
 
 void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& orientation, int lighting_rows_per_hsv) {
@@ -152,14 +68,6 @@ void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& 
             m.bounds_max = glm::max(m.bounds_max, w);
         }
     }
-}
-
-PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
-                              const glm::mat3& orientation, int lighting_rows_per_hsv) {
-    PreparedShells shells;
-    prepare_prototypes(shells, style, satf, mean_alpha);
-    place_clusters(shells, style, orientation, lighting_rows_per_hsv);
-    return shells;
 }
 
 float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::span<const std::uint32_t> strand_cluster,

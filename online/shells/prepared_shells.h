@@ -1,6 +1,8 @@
 #pragma once
 // The shell renderer's scene preparation (online/shell_renderer.h), GL-free: everything about a hairstyle that
-// the GPU passes read, computed once per style on the CPU and testable without a GL context.
+// the GPU passes read, computed once per style on the CPU and testable without a GL context. Stage 1 needs the
+// HRIR database and lives with the cooking (online/scene/cook.h); these types and stage 2 do not, so that the
+// runtime, which draws cooked assets (online/shells/hair_asset.h), links no database.
 //
 //   prototypes  each prototype cluster's layer meshes (models/generalized_disk.h layer_mesh) in one vertex and
 //               index array, and per sector its density features → FLANN look-up (db/satf.h match_all, DESIGN.md
@@ -21,7 +23,6 @@
 #include <span>
 #include <vector>
 
-#include "db/satf.h"
 #include "models/hair_style.h"
 #include "models/strands.h"
 #include "online/shells/shell_settings.h"
@@ -84,11 +85,7 @@ struct PreparedShells {
 // (models/strands.h hang_axis_rotation): identity for y-up styles.
 glm::mat3 style_orientation(const HairStyle& style);
 
-// Stage 1: meshes, sector look-ups and shadow sums of every prototype. `mean_alpha`: per database record (the
-// record atlas's, online/shells/record_atlas.h). Throws coif::Error if the style has no clusters.
-void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const SatfIndex& satf,
-                        std::span<const float> mean_alpha);
-// Stage 2 (after stage 1): instances, lighting samples and bounds of every cluster under `orientation`.
+// Stage 2 (after stage 1, online/scene/cook.h prepare_prototypes): instances, lighting samples and bounds of every cluster under `orientation`.
 // `lighting_rows_per_hsv`: lighting samples per HSV along t (0: the layout's mesh_t, one per mesh row);
 // throws coif::Error::parameter outside 0..kMaxMeshSubdivision.
 void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::mat3& orientation,
@@ -102,8 +99,4 @@ void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::m
 // of range.
 float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::span<const std::uint32_t> strand_cluster,
                           const glm::mat3& orientation);
-// Both stages.
-PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
-                              const glm::mat3& orientation, int lighting_rows_per_hsv = 0);
-
 }  // namespace coif

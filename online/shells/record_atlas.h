@@ -1,5 +1,5 @@
 #pragma once
-// The record atlas: the HRIR database's records (db/hrir_db.h) packed as one RGBA8 image for the shell
+// The record atlas: HRIR database records (db/hrir_db.h) packed as one RGBA8 image for the shell
 // renderer's bilinear fetch, with the per-record means the scene preparation needs. GL-free; the layout
 // (tiles, borders, channel order) is shaders/gl/record_atlas.glsl, shared with the shader that reads it.
 //
@@ -9,10 +9,9 @@
 // (51 dB against RGBA16F) is in docs/renderer.md.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
-
-#include "db/hrir_db.h"
 
 namespace coif {
 
@@ -25,12 +24,26 @@ struct RecordAtlas {
     std::vector<std::uint8_t> texels;  // RGBA8, width × height, row 0 first
     std::array<glm::vec4, kAtlasParts> lo{}, scale{};  // value = lo + scale · texel / 255, per part and channel
     std::vector<float> mean_alpha, mean_a0;  // per record: mean α and mean re a0 over views and x
-    float re_norm = 1;                       // Σ mean a0 / Σ mean α over the records (docs/renderer.md)
+    // Σ mean a0 / Σ mean α over the whole database's records (docs/renderer.md), not only the atlas's: an atlas of
+    // the records one style uses renders as the database's would.
+    float re_norm = 1;
 
     // The decoded value of channel `channel` of part `part` at (x, view) of `record` (tests).
     float value(std::size_t record, int part, int channel, int view, int x) const;
 };
 
-RecordAtlas pack_record_atlas(const HrirDatabase& db);
+// What a record's 12 atlas channels hold at one texel: (α, a0, a1, b1, …, a4, b4, 0, 0) as the layout orders them.
+using AtlasTexels = std::array<float, 4 * kAtlasParts>;
+// The value a channel of a part holds (shaders/gl/record_atlas.glsl atlas_value_index): 0 α, 1..9 re's
+// coefficient index + 1, above that unused.
+int atlas_value_index(int part, int channel);
+
+// Packs `records` records of views × hrir_length texels, `values(record, view, x)` giving each texel's channels,
+// quantised with the given ranges (`lo`, `scale`: those of every record the atlas may be asked to match, e.g. a
+// whole database's, so that a subset packs to the same texels). Fills texels and the layout; the per-record means
+// and re_norm are the caller's. GL- and database-free: online/scene/cook.h packs a database's records with it.
+RecordAtlas pack_atlas(std::size_t records, int views, int hrir_length, const std::array<glm::vec4, kAtlasParts>& lo,
+                       const std::array<glm::vec4, kAtlasParts>& scale,
+                       const std::function<AtlasTexels(std::size_t record, int view, int x)>& values);
 
 }  // namespace coif

@@ -83,7 +83,11 @@ const ParamTable<ShellSettings>& shell_settings_table() {
 }
 
 ShellSettings read_shell_settings(const std::string& path, ShellSettings s) {
-    read_params(read_json_file(path), s, shell_settings_table(), path);
+    return shell_settings_from_json(read_json_file(path), path, s);
+}
+
+ShellSettings shell_settings_from_json(const nlohmann::json& j, const std::string& path, ShellSettings s) {
+    read_params(j, s, shell_settings_table(), path);
     try {  // the keys one by one are in range; together they must make a valid hair (e.g. β_TRT = 2 β_R)
         shading::validate(s.hair, "the hair parameters");
     } catch (const Error& e) {

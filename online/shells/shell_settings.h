@@ -61,6 +61,9 @@ int supersampling(const ShellSettings& settings);
 // whole (shading::validate). background, samples and timed are not in the file.
 const ParamTable<ShellSettings>& shell_settings_table();  // the hair keys (lifted), then the renderer's
 ShellSettings read_shell_settings(const std::string& path, ShellSettings base = {});
+// The same from a parsed object (e.g. the defaults inside a hair asset, online/shells/hair_asset.h); `path` names
+// its file in errors.
+ShellSettings shell_settings_from_json(const nlohmann::json& j, const std::string& path, ShellSettings base = {});
 // The file of `settings` (every key of the table; fiber_radius only when set, TT/TRT angles only where
 // they differ from their links): read_shell_settings of it gives `settings` back, bar background, samples
 // and timed. write_shell_settings writes it atomically.

@@ -1,4 +1,4 @@
-// The scene assembly of online/hair_scene.h: a HairScene draws what a ShellRenderer assembled by hand from the
+// The scene assembly of online/scene/hair_scene.h: a HairScene draws what a ShellRenderer assembled by hand from the
 // same inputs draws, frames its camera as SceneFraming says, and refuses an eye inside the hair.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,8 @@
 
 #include "models/core/error.h"
 #include "models/core/progress.h"
-#include "online/hair_scene.h"
+#include "online/scene/hair_scene.h"
+#include "online/scene/cook.h"
 #include "tests/online/shell_test_scene.h"
 
 namespace coif {
@@ -53,13 +54,14 @@ TEST(HairScene, DrawsWhatTheRendererAssembledByHandDraws) {
     gl::HairScene scene(desc());
     EXPECT_EQ(scene.lights.size(), 2u);
     EXPECT_EQ(scene.lights_label, "two test lights");
-    EXPECT_EQ(scene.db.path(), test_db_file());
+    ASSERT_TRUE(scene.db);
+    EXPECT_EQ(scene.db->path(), test_db_file());
     gl::ShellSettings settings;
     settings.samples = 1;
     const Image a = scene.renderer->render(scene.camera, settings);
 
     Strands sampled;
-    gl::ShellRenderer by_hand(scene.style, scene.satf, style_orientation(scene.style), 0, &sampled);
+    gl::ShellRenderer by_hand(cook_shells(scene.style, *scene.satf, style_orientation(scene.style), 0, &sampled));
     by_hand.set_lights(scene.lights);
     const Camera camera = desc().framing.camera_for(std::move(sampled));
     EXPECT_EQ(camera.eye, scene.camera.eye);

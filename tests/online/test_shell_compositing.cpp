@@ -14,6 +14,7 @@
 #include "online/gl_context.h"
 #include "online/shell_renderer.h"
 #include "tests/common/run.h"
+#include "online/scene/cook.h"
 #include "tests/online/shell_test_scene.h"
 
 namespace coif {
@@ -41,7 +42,7 @@ struct Scene {
     std::unique_ptr<gl::Context> context = gl::Context::headless();
     gl::ShellRenderer renderer;
     Camera camera;
-    explicit Scene(const HairStyle& style) : renderer(style, test_index(), glm::mat3(1.0f)) {
+    explicit Scene(const HairStyle& style) : renderer(cook_shells(style, test_index(), glm::mat3(1.0f))) {
         renderer.set_lights(two_lights());
         camera = Camera::orbit(renderer.bounds_min(), renderer.bounds_max(), 0.5f, 0.2f, 120, 96);
     }

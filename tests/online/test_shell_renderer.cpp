@@ -18,6 +18,7 @@
 #include "shaders/glsl_prelude.h"
 #include "shaders/lighting.h"
 #include "tests/common/run.h"
+#include "online/scene/cook.h"
 #include "tests/online/shell_test_scene.h"
 
 namespace coif::glsl {
@@ -49,12 +50,12 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     auto context = gl::Context::headless();
     {
         // The straight cluster's sampled strands lie along its axis: no spread of their own (float rounding).
-        gl::ShellRenderer straight(one_cluster_style(), test_index(), glm::mat3(1.0f));
+        gl::ShellRenderer straight(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
         EXPECT_LT(straight.stats().tangent_spread, 1e-3f);
     }
     // The twisted one's wind about it, so that the measured tilts are not zero.
     const HairStyle style = twisted_cluster_style();
-    gl::ShellRenderer renderer(style, test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
     std::printf("twisted cluster: RMS tilt %.1f deg\n", double(renderer.stats().tangent_spread) * 180.0 / std::numbers::pi);
     EXPECT_GT(renderer.stats().tangent_spread, 0.1f);
     SrbfLight light;
@@ -124,7 +125,7 @@ HairStyle two_cluster_style() {
 TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     auto context = gl::Context::headless();
     const HairStyle style = two_cluster_style();
-    gl::ShellRenderer renderer(style, test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
     // A narrow light along −x: cluster c1 (x = 3) is lit through c0.
     SrbfLight light;
     light.L = glm::vec3(1.0f);
@@ -215,7 +216,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
 TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {
     auto context = gl::Context::headless();
     const HairStyle style = two_cluster_style();
-    gl::ShellRenderer renderer(style, test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
     SrbfLight light;
     light.L = glm::vec3(1.0f);
     light.omega = glm::normalize(glm::vec3(0.2f, 0.6f, 0.8f));
@@ -268,7 +269,7 @@ TEST(ShellRenderer, ScatteringAovsAddUpToTheImage) {
     // up to each fragment's max(Σ_k …, 0) clamp of its Fourier sum (a lobe alone can dip below zero
     // where the sum does not) and RGBA16F rounding: 2 % of the image's mean.
     auto context = gl::Context::headless();
-    gl::ShellRenderer renderer(two_cluster_style(), test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(two_cluster_style(), test_index(), glm::mat3(1.0f)));
     renderer.set_lights(two_lights());
     const Camera camera = front_camera(renderer);
     gl::ShellSettings s;
@@ -321,7 +322,7 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
     // tangents spread by 0.5 rad about the axis, both paths lighting the ring of fibre tangents
     // (shaders/lighting/fibre_tangents.glsl): measured 0.2 % (λ = 1) and 1.1 % (λ = 0.1), the ring widening the highlight.
     auto context = gl::Context::headless();
-    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
     for (const float spread : {0.0f, 0.5f})
     for (const float lambda : {0.1f, 1.0f}) {
         SrbfLight light;
@@ -373,8 +374,8 @@ TEST(ShellRenderer, DatabaseOfAnotherFourierOrderRendersAsTheTruncatedSeries) {
     std::filesystem::remove(path);
     const SatfIndex index2(db2, SatfOptions{});
     const HairStyle style = one_cluster_style();
-    gl::ShellRenderer order4(style, test_index(), glm::mat3(1.0f));
-    gl::ShellRenderer order2(style, index2, glm::mat3(1.0f));
+    gl::ShellRenderer order4(cook_shells(style, test_index(), glm::mat3(1.0f)));
+    gl::ShellRenderer order2(cook_shells(style, index2, glm::mat3(1.0f)));
     order4.set_lights(two_lights());
     order2.set_lights(two_lights());
     const Camera camera = front_camera(order4);
@@ -401,7 +402,7 @@ TEST(ShellRenderer, DatabaseOfAnotherFourierOrderRendersAsTheTruncatedSeries) {
 
 TEST(ShellRenderer, RenderingIsDeterministic) {
     auto context = gl::Context::headless();
-    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
     renderer.set_lights(two_lights());
     const Camera camera = front_camera(renderer);
     gl::ShellSettings s;
@@ -415,7 +416,7 @@ TEST(ShellRenderer, RenderingIsDeterministic) {
 
 TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
     auto context = gl::Context::headless();
-    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
     renderer.set_lights(two_lights());
     const Camera camera = front_camera(renderer);
     gl::ShellSettings s;
@@ -443,7 +444,7 @@ TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
 
 TEST(ShellRenderer, DefaultLightsShowLitHair) {
     auto context = gl::Context::headless();
-    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
     renderer.set_lights(two_lights());
     const Camera camera = front_camera(renderer, 120, 80);
     gl::ShellSettings s;
@@ -498,7 +499,7 @@ TEST(ShellRenderer, OwnClusterShadowDarkensTheSideAwayFromTheLight) {
     // must grow when it is on (a wrong sign of the chord or of the harmonics' azimuth would shrink it). Measured
     // 2.57 on against 1.05 off; the bound, 1.2×, only asks for the direction with room for other databases.
     auto context = gl::Context::headless();
-    gl::ShellRenderer renderer(one_cluster_style(), test_index(), glm::mat3(1.0f));
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
     SrbfLight light;
     light.L = glm::vec3(1.0f);
     light.omega = glm::vec3(1.0f, 0.0f, 0.0f);

@@ -10,6 +10,7 @@
 #include "models/core/error.h"
 #include "online/shells/prepared_shells.h"
 #include "online/shells/record_atlas.h"
+#include "online/scene/cook.h"
 #include "tests/online/shell_test_scene.h"
 
 namespace coif {

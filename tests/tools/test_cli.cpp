@@ -1,9 +1,11 @@
 // The coif command as users meet it: help, exit codes, errors on stderr, no partial output files.
+#include <fstream>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "models/absorption_map.h"
+#include "models/core/atomic_file.h"
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "tests/common/run.h"
@@ -23,7 +25,7 @@ TEST(Cli, HelpListsEveryNounAndExitsZero) {
 
 // Every leaf subcommand's help has a description and an example.
 TEST(Cli, EverySubcommandHelpTeaches) {
-    for (const char* cmd : {"hair inspect", "hair convert", "render", "view", "bench gl"}) {
+    for (const char* cmd : {"hair inspect", "hair convert", "render", "bake", "view", "bench gl"}) {
         const auto r = run_coif(std::string(cmd) + " --help");
         EXPECT_EQ(r.exit_code, 0) << cmd;
         EXPECT_THAT(r.out, HasSubstr("Examples:")) << cmd;
@@ -210,6 +212,72 @@ TEST(CliSlow, ExactCompositingBeyondItsStorageFailsAndWritesNothing) {
         EXPECT_NE(r.err.find("fragment storage holds at most"), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(out));
     }
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace coif
+
+namespace coif {
+namespace {
+
+// coif bake: the default style cooked once into an asset; coif render of the asset draws the same pixels as coif
+// render of the style (and starts from the asset's baked parameters); a damaged asset is refused with exit code 1
+// and no image.
+TEST(Cli, BakedAssetRendersAsItsStyleAndDamagedAssetsAreRefused) {
+    namespace fs = std::filesystem;
+    const auto dir = test::scratch_dir("cli-bake");
+    {
+        std::ofstream p(dir / "look.json");
+        p << R"({"sigma_a": [0.6, 0.8, 1.2]})";
+    }
+    const fs::path asset = dir / "hair.coif";
+    auto r = run_coif("bake @default --json -o '" + asset.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto doc = nlohmann::json::parse(r.out);
+    EXPECT_EQ(doc["clusters"], 64);
+    EXPECT_LE(doc["records"].get<int>(), doc["database_records"].get<int>());
+    const std::string size = " --width 96 --height 64 --samples 1 ";
+    r = run_coif("render" + size + "-o '" + (dir / "style.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_coif("render --style '" + asset.string() + "'" + size + "--json -o '" + (dir / "asset.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(nlohmann::json::parse(r.out)["load"]["asset"].get<bool>());
+    // Bit-identical: the same cooked data through the same renderer.
+    EXPECT_EQ(read_image(dir / "style.exr").pixels, read_image(dir / "asset.exr").pixels);
+
+    // Baked with other parameters, the asset starts from them (and --params on top would change them again).
+    ASSERT_EQ(run_coif("bake @default --params '" + (dir / "look.json").string() + "' -o '" + (dir / "look.coif").string() + "'").exit_code, 0);
+    r = run_coif("render --style '" + (dir / "look.coif").string() + "'" + size + "-o '" + (dir / "look.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_coif("render --params '" + (dir / "look.json").string() + "'" + size + "-o '" + (dir / "look_style.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_image(dir / "look.exr").pixels, read_image(dir / "look_style.exr").pixels);
+    EXPECT_NE(read_image(dir / "look.exr").pixels, read_image(dir / "asset.exr").pixels);
+
+    // Truncated, corrupted, another version: exit 1, the file named, nothing written.
+    const std::vector<std::byte> good = read_file_bytes(asset);
+    const auto damaged = [&](const std::string& name, std::vector<std::byte> bytes, const std::string& why) {
+        const fs::path bad = dir / (name + ".coif");
+        write_file_atomic(bad, bytes);
+        const fs::path out = dir / (name + ".png");
+        const auto res = run_coif("render --style '" + bad.string() + "'" + size + "-o '" + out.string() + "'");
+        EXPECT_EQ(res.exit_code, 1) << name;
+        EXPECT_THAT(res.err, HasSubstr(bad.string())) << name;
+        EXPECT_THAT(res.err, HasSubstr(why)) << name;
+        EXPECT_FALSE(fs::exists(out)) << name;
+    };
+    damaged("truncated", std::vector<std::byte>(good.begin(), good.begin() + good.size() / 3), "truncated");
+    std::vector<std::byte> corrupt = good;
+    corrupt[corrupt.size() / 2] ^= std::byte{1};
+    damaged("corrupt", corrupt, "checksum");
+    std::vector<std::byte> other = good;
+    other[8] = std::byte{7};
+    damaged("version", other, "version 7");
+    // Bake refuses a bad style or parameters before writing anything.
+    r = run_coif("bake @default --params '" + (dir / "missing.json").string() + "' -o '" + (dir / "x.coif").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_FALSE(fs::exists(dir / "x.coif"));
     fs::remove_all(dir);
 }
 

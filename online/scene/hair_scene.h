@@ -40,6 +40,10 @@ struct SceneFraming {
 
 struct HairSceneDesc {
     HairStyle style;
+    // A cooked hair (online/shells/hair_asset.h, e.g. read from a `.coif` asset) to draw instead of `style`: no
+    // database is opened, and the camera frames the box the asset holds (SceneFraming::keep_axes is refused: it
+    // needs the style's strands).
+    std::optional<CookedShells> cooked;
     std::vector<SrbfLight> lights;
     std::string lights_label;          // where the lights come from, in words (messages, image metadata)
     std::filesystem::path database;    // empty: the default database, built on first use
@@ -71,14 +75,17 @@ struct HairScene {
     HairScene& operator=(const HairScene&) = delete;
 
     // Another style's shells in a renderer sharing this scene's database, SATF index and lights, framed by
-    // `framing` (without absorption); throws as the constructor. The renderer must not outlive the scene.
+    // `framing` (without absorption); throws as the constructor, and coif::Error if the scene is an asset's (it has
+    // no database). The renderer must not outlive the scene.
     ShellView view_of(const HairStyle& style, const SceneFraming& framing, int lighting_rows) const;
 
     std::string lights_label;
     std::vector<SrbfLight> lights;
-    HairStyle style;
-    HrirDatabase db;
-    SatfIndex satf;
+    HairStyle style;                  // empty for an asset
+    std::optional<HrirDatabase> db;   // none for an asset
+    std::optional<SatfIndex> satf;
+    std::string database_label;       // the database drawn with: its path, or for an asset the one it was baked against
+    ShellSettings defaults;           // the settings to start from: an asset's baked parameters, else the library's
     std::unique_ptr<Context> context;
     std::unique_ptr<ShellRenderer> renderer;
     Camera camera;

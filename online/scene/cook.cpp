@@ -1,0 +1,226 @@
+#include "online/scene/cook.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "models/core/error.h"
+#include "models/sector_features.h"
+#include "models/style_strands.h"
+
+namespace coif {
+namespace {
+
+constexpr int kShadowGridSize = 64;  // voxels along the hair's longest axis (docs/renderer.md: error and cost)
+
+// A record's 12 atlas channels at every (view, x), view-major: α and re's first 9 coefficients (a database of a
+// lower order leaves the rest zero; one of a higher order is read to order 4).
+std::vector<AtlasTexels> record_texels(const HrirDatabase& db, std::size_t rec) {
+    const AngleGrids& g = db.params().grids;
+    const std::vector<float> r = db.record(rec);
+    std::vector<AtlasTexels> out(static_cast<std::size_t>(g.views) * g.hrir_length);
+    for (int v = 0; v < g.views; ++v)
+        for (int x = 0; x < g.hrir_length; ++x) {
+            AtlasTexels& t = out[static_cast<std::size_t>(v) * g.hrir_length + x];
+            for (int part = 0; part < kAtlasParts; ++part)
+                for (int ch = 0; ch < 4; ++ch) {
+                    const int value = atlas_value_index(part, ch);
+                    float f = 0.0f;
+                    if (value == 0) f = r[g.alpha_offset(v) + x];
+                    else if (value <= 9 && value - 1 < g.coefficients()) f = r[g.re_offset(v, value - 1) + x];
+                    t[part * 4 + ch] = f;
+                }
+        }
+    return out;
+}
+
+// The best kMaxShellNeighbours of a look-up, best first, and the match's mean α (Σ weight · ᾱ over all k).
+ShellSector shell_sector(const SectorMatch& mt, std::span<const float> mean_alpha, float* sector_alpha) {
+    std::vector<int> order(mt.k);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return mt.weight[a] > mt.weight[b]; });
+    ShellSector gs;
+    for (int n = 0; n < std::min(mt.k, gl::kMaxShellNeighbours); ++n) {
+        gs.id[n] = mt.id[order[n]];
+        gs.weight[n] = mt.weight[order[n]];
+    }
+    double a = 0;
+    for (int n = 0; n < mt.k; ++n) a += mt.weight[n] * mean_alpha[mt.id[n]];
+    *sector_alpha = static_cast<float>(a);
+    return gs;
+}
+
+}  // namespace
+
+DatabaseAtlasStats database_atlas_stats(const HrirDatabase& db) {
+    const AngleGrids& g = db.params().grids;
+    DatabaseAtlasStats s;
+    std::array<glm::vec4, kAtlasParts> hi{};
+    s.lo.fill(glm::vec4(std::numeric_limits<float>::max()));
+    hi.fill(glm::vec4(std::numeric_limits<float>::lowest()));
+    s.mean_alpha.resize(db.size());
+    s.mean_a0.resize(db.size());
+    const double texels = static_cast<double>(g.views) * g.hrir_length;
+    for (std::size_t rec = 0; rec < db.size(); ++rec) {
+        double sa = 0, s0 = 0;
+        for (const AtlasTexels& t : record_texels(db, rec)) {
+            sa += t[0];
+            s0 += t[1];
+            for (int part = 0; part < kAtlasParts; ++part)
+                for (int ch = 0; ch < 4; ++ch) {
+                    s.lo[part][ch] = std::min(s.lo[part][ch], t[part * 4 + ch]);
+                    hi[part][ch] = std::max(hi[part][ch], t[part * 4 + ch]);
+                }
+        }
+        s.mean_alpha[rec] = static_cast<float>(sa / texels);
+        s.mean_a0[rec] = static_cast<float>(s0 / texels);
+    }
+    for (int part = 0; part < kAtlasParts; ++part) {
+        for (int ch = 0; ch < 4; ++ch)
+            if (!(hi[part][ch] > s.lo[part][ch])) hi[part][ch] = s.lo[part][ch] + 1.0f;  // a constant (or unused) channel
+        s.scale[part] = hi[part] - s.lo[part];
+    }
+    const double sum_alpha = std::accumulate(s.mean_alpha.begin(), s.mean_alpha.end(), 0.0);
+    const double sum_a0 = std::accumulate(s.mean_a0.begin(), s.mean_a0.end(), 0.0);
+    s.re_norm = sum_alpha > 0 && sum_a0 > 0 ? static_cast<float>(sum_a0 / sum_alpha) : 1.0f;
+    return s;
+}
+
+RecordAtlas pack_record_atlas(const HrirDatabase& db, std::span<const std::uint32_t> records, const DatabaseAtlasStats& stats) {
+    const AngleGrids& g = db.params().grids;
+    for (const std::uint32_t r : records)
+        if (r >= db.size()) throw Error(db.path(), "records", "record " + std::to_string(r) + " is out of range");
+    std::size_t cached = SIZE_MAX;
+    std::vector<AtlasTexels> texels;
+    RecordAtlas a = pack_atlas(records.size(), g.views, g.hrir_length, stats.lo, stats.scale,
+                               [&](std::size_t i, int v, int x) {
+                                   if (cached != i) texels = record_texels(db, records[i]), cached = i;
+                                   return texels[static_cast<std::size_t>(v) * g.hrir_length + x];
+                               });
+    for (const std::uint32_t r : records) {
+        a.mean_alpha.push_back(stats.mean_alpha[r]);
+        a.mean_a0.push_back(stats.mean_a0[r]);
+    }
+    a.re_norm = stats.re_norm;
+    return a;
+}
+
+RecordAtlas pack_record_atlas(const HrirDatabase& db) {
+    std::vector<std::uint32_t> all(db.size());
+    std::iota(all.begin(), all.end(), 0u);
+    return pack_record_atlas(db, all, database_atlas_stats(db));
+}
+
+void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha) {
+    if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
+    m.layout = style.layout;
+    const DiskLayout& L = m.layout;
+    m.prototypes.clear();
+    m.vertices.clear();
+    m.indices.clear();
+    m.triangles = 0;
+    m.cluster_proto.assign(style.clusters.size(), SIZE_MAX);
+    std::vector<std::size_t> slot_of(style.clusters.size(), SIZE_MAX);
+    for (std::size_t c = 0; c < style.clusters.size(); ++c) {
+        const std::size_t p = style.clusters[c].prototype;
+        if (slot_of[p] == SIZE_MAX) {
+            slot_of[p] = m.prototypes.size();
+            m.prototypes.push_back(p);
+        }
+        m.cluster_proto[c] = slot_of[p];
+    }
+    const std::size_t per_proto = L.sector_count();
+    const double lambda = L.gaussian_width;
+    m.sectors.assign(m.prototypes.size() * per_proto, ShellSector{});
+    m.meshes.assign(m.prototypes.size(), {});
+    for (std::size_t p = 0; p < m.prototypes.size(); ++p) {
+        const Cluster& proto = style.clusters[m.prototypes[p]];
+        const GeneralizedCylinder& shape = *proto.shape;
+        for (int j = 0; j < L.layers; ++j) {
+            const LayerMesh mesh = layer_mesh(shape, L, j);
+            MeshRange range;
+            range.first = static_cast<std::uint32_t>(m.indices.size());
+            range.count = static_cast<std::int32_t>(mesh.indices.size());
+            range.base_vertex = static_cast<std::int32_t>(m.vertices.size());
+            range.vertex_count = static_cast<std::int32_t>(mesh.position.size());
+            for (std::size_t v = 0; v < mesh.position.size(); ++v) {
+                const Frame f = shape.frame(mesh.texcoord[v].y);
+                m.vertices.push_back({mesh.position[v], mesh.tangent[v], mesh.normal[v], mesh.texcoord[v], glm::vec3(f.normal)});
+            }
+            m.indices.insert(m.indices.end(), mesh.indices.begin(), mesh.indices.end());
+            m.meshes[p].push_back(range);
+            m.triangles += mesh.indices.size() / 3;
+        }
+        const std::vector<SectorDensity> grids = cluster_sector_densities(shape, L, *proto.density);
+        std::vector<float> rows(per_proto * kRawFeatureCount);
+        for (std::size_t s = 0; s < per_proto; ++s) {
+            const SectorRef ref = sector_ref(L, s);
+            const SectorShape sh = sector_shape(shape, L, ref.plane, ref.layer, ref.sector);
+            const RawFeatures f = raw_sector_features(grids[s], sh.depth / lambda, sh.width / std::max(sh.depth, 1e-12));
+            std::copy(f.begin(), f.end(), rows.begin() + static_cast<std::ptrdiff_t>(s * kRawFeatureCount));
+        }
+        const std::vector<SectorMatch> matches = satf.match_all(rows);
+        std::vector<float> sector_alpha(per_proto, 0.0f);
+        for (std::size_t s = 0; s < per_proto; ++s)
+            m.sectors[p * per_proto + s] = shell_sector(matches[s], mean_alpha, &sector_alpha[s]);
+        for (int i = 0; i <= L.s_t; ++i)
+            for (int k = 0; k < L.s_u; ++k) {
+                float outer = 0.0f;  // Σ ᾱ of the layers outside layer j (004 eq. 12's χ(k))
+                for (int j = L.layers - 1; j >= 0; --j) {
+                    const std::size_t s = L.sector_index(i, j, k);
+                    m.sectors[p * per_proto + s].shadow.x = outer;
+                    outer += sector_alpha[s];
+                }
+                for (int j = 0; j < L.layers; ++j)  // Σ ᾱ of every layer: one radius (shaders/lighting/own_cluster.glsl)
+                    m.sectors[p * per_proto + L.sector_index(i, j, k)].shadow.y = outer;
+            }
+    }
+}
+
+PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
+                              const glm::mat3& orientation, int lighting_rows_per_hsv) {
+    PreparedShells shells;
+    prepare_prototypes(shells, style, satf, mean_alpha);
+    place_clusters(shells, style, orientation, lighting_rows_per_hsv);
+    return shells;
+}
+
+CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
+                         int lighting_rows_per_hsv, Strands* sampled_strands) {
+    const HrirDatabase& db = satf.database();
+    if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
+    CookedShells c;
+    c.name = style.name;
+    c.source = c.database = db.path().string();
+    c.database_records = db.size();
+    const DatabaseAtlasStats stats = database_atlas_stats(db);
+    c.shells = prepare_shells(style, satf, stats.mean_alpha, orientation, lighting_rows_per_hsv);
+    // Only the records the sectors use go into the atlas, renumbered in order of their database id.
+    std::vector<std::uint32_t> used;
+    for (const ShellSector& s : c.shells.sectors)
+        for (int n = 0; n < gl::kMaxShellNeighbours; ++n) used.push_back(s.id[n]);
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    for (ShellSector& s : c.shells.sectors)
+        for (int n = 0; n < gl::kMaxShellNeighbours; ++n)
+            s.id[n] = static_cast<std::uint32_t>(std::lower_bound(used.begin(), used.end(), s.id[n]) - used.begin());
+    c.atlas = pack_record_atlas(db, used, stats);
+    // The shadow grid (decision 5): the strands the reference renderer draws, voxelized.
+    std::vector<std::uint32_t> strand_cluster;
+    Strands strands = sample_strands(style, StrandSampling{}, &strand_cluster);
+    c.grid = voxelize_strands(strands, orientation, kShadowGridSize);
+    // How the same strands' tangents tilt about each lighting sample's, for the lighting.
+    c.tangent_spread = measure_fibre_tilts(c.shells, strands, strand_cluster, orientation);
+    // coif reference's radius is of the strands as it draws them: turned, as the grid holds them.
+    c.auto_fiber_radius = static_cast<float>(auto_fiber_radius(glm::dvec3(c.grid.strands_min), glm::dvec3(c.grid.strands_max)));
+    c.shadow_strands = strands.strand_count();
+    // The box a camera frames (hair_scene.h SceneFraming): the strands turned y-up, as coif reference frames them.
+    const StrandStats st = strand_stats(oriented_y_up(strands));
+    c.frame_min = glm::vec3(st.bbox_min);
+    c.frame_max = glm::vec3(st.bbox_max);
+    if (sampled_strands) *sampled_strands = std::move(strands);
+    return c;
+}
+
+}  // namespace coif

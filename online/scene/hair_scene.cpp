@@ -1,0 +1,77 @@
+#include "online/scene/hair_scene.h"
+
+#include "db/default_database.h"
+#include "models/core/error.h"
+#include "online/scene/cook.h"
+
+namespace coif::gl {
+
+Camera SceneFraming::camera_for(Strands sampled) const {
+    if (box) return view.around(box->first, box->second);
+    const StrandStats st = strand_stats(keep_axes ? sampled : oriented_y_up(std::move(sampled)));
+    return view.around(glm::vec3(st.bbox_min), glm::vec3(st.bbox_max));
+}
+
+void refuse_eye_inside(const Camera& camera, const ShellRenderer& r) {
+    const glm::vec3 lo = r.bounds_min(), hi = r.bounds_max();
+    if (glm::all(glm::greaterThan(camera.eye, lo)) && glm::all(glm::lessThan(camera.eye, hi)))
+        throw Error::parameter("camera", "the eye lies inside the hair's bounding box");
+}
+
+RenderTarget camera_target(const Camera& camera, int samples) {
+    return RenderTarget(camera.width, camera.height, GL_RGBA16F, samples);
+}
+
+namespace {
+
+// `cooked` uploaded to a renderer and lit, `camera` framing it: `framing.box`, else with keep_axes the sampled strands
+// in the style's axes, else the box the cooking recorded (the strands turned y-up, as camera_for frames them).
+ShellView make_view(CookedShells cooked, const Strands* sampled, const std::vector<SrbfLight>& lights,
+                    const AbsorptionMap* absorption, const SceneFraming& framing) {
+    ShellView v;
+    if (framing.box) v.camera = framing.view.around(framing.box->first, framing.box->second);
+    else if (framing.keep_axes) {
+        if (!sampled) throw Error::parameter("keep axes", "an asset is framed as it was baked; keeping the axes needs the style");
+        v.camera = framing.camera_for(*sampled);
+    } else v.camera = framing.view.around(cooked.frame_min, cooked.frame_max);
+    v.renderer = std::make_unique<ShellRenderer>(std::move(cooked));
+    v.renderer->set_lights(lights);
+    if (absorption) v.renderer->set_absorption(absorption);
+    refuse_eye_inside(v.camera, *v.renderer);
+    return v;
+}
+
+ShellView cook_view(const HairStyle& style, const SatfIndex& satf, const std::vector<SrbfLight>& lights,
+                    const AbsorptionMap* absorption, const SceneFraming& framing, int lighting_rows) {
+    Strands sampled;
+    CookedShells cooked = cook_shells(style, satf, style_orientation(style), lighting_rows, &sampled);
+    return make_view(std::move(cooked), &sampled, lights, absorption, framing);
+}
+
+}  // namespace
+
+HairScene::HairScene(HairSceneDesc desc)
+    : lights_label(std::move(desc.lights_label)), lights(std::move(desc.lights)), style(std::move(desc.style)) {
+    ShellView v;
+    if (desc.cooked) {
+        database_label = desc.cooked->database;
+        defaults = desc.cooked->defaults;
+        context = Context::headless();
+        v = make_view(std::move(*desc.cooked), nullptr, lights, desc.absorption, desc.framing);
+    } else {
+        db.emplace(open_database_or_default(desc.database, desc.log));
+        satf.emplace(SatfIndex::open(*db, SatfOptions{}));
+        database_label = db->path().string();
+        context = Context::headless();
+        v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows);
+    }
+    renderer = std::move(v.renderer);
+    camera = v.camera;
+}
+
+ShellView HairScene::view_of(const HairStyle& other, const SceneFraming& framing, int lighting_rows) const {
+    if (!satf) throw Error::parameter("style", "a scene drawn from an asset has no database to cook another style with");
+    return cook_view(other, *satf, lights, nullptr, framing, lighting_rows);
+}
+
+}  // namespace coif::gl

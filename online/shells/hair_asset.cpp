@@ -1,0 +1,459 @@
+#include "online/shells/hair_asset.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <type_traits>
+
+#include "models/core/atomic_file.h"
+#include "models/core/bytes.h"
+#include "models/core/checksum.h"
+#include "models/core/error.h"
+#include "models/core/json_field.h"
+
+namespace coif {
+namespace {
+
+constexpr char kMagic[8] = {'C', 'O', 'I', 'F', 'H', 'A', 'I', 'R'};
+constexpr std::size_t kHeader = 32;
+constexpr std::uint32_t kSections = 16;
+// Bounds that no real asset comes near and that keep a hostile one from asking for absurd memory.
+constexpr std::uint64_t kMaxElements = 1ull << 31;
+constexpr int kMaxLayoutCount = 4096;
+
+static_assert(sizeof(ShellVertex) == 56 && sizeof(MeshRange) == 16 && sizeof(ShellSector) == 48 &&
+              sizeof(ShellInstance) == 80 && sizeof(LightingSample) == 96 && sizeof(glm::vec3) == 12);
+static_assert(std::is_trivially_copyable_v<ShellVertex> && std::is_trivially_copyable_v<LightingSample>);
+
+std::uint32_t tag(const char (&t)[5]) {
+    return std::uint32_t(std::uint8_t(t[0])) | std::uint32_t(std::uint8_t(t[1])) << 8 |
+           std::uint32_t(std::uint8_t(t[2])) << 16 | std::uint32_t(std::uint8_t(t[3])) << 24;
+}
+std::string tag_name(std::uint32_t t) {
+    std::string s;
+    for (int i = 0; i < 4; ++i) {
+        const char c = static_cast<char>((t >> (8 * i)) & 0xff);
+        s += (c >= 32 && c < 127) ? c : '?';
+    }
+    return s;
+}
+
+nlohmann::json vec_json(glm::vec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+nlohmann::json vec_json(glm::vec4 v) { return nlohmann::json::array({v.x, v.y, v.z, v.w}); }
+
+class Writer {
+public:
+    template <class T>
+    void section(const char (&name)[5], std::span<const T> items) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        bytes::put(out, tag(name));
+        bytes::put(out, static_cast<std::uint32_t>(sizeof(T)));
+        bytes::put(out, static_cast<std::uint64_t>(items.size()));
+        const auto* p = reinterpret_cast<const std::byte*>(items.data());
+        out.insert(out.end(), p, p + items.size_bytes());
+        while (out.size() % 8) out.push_back(std::byte{0});
+        ++count;
+    }
+    std::vector<std::byte> out = std::vector<std::byte>(kHeader, std::byte{0});
+    std::uint32_t count = 0;
+};
+
+nlohmann::json meta_json(const CookedShells& c) {
+    const PreparedShells& p = c.shells;
+    const DiskLayout& L = p.layout;
+    nlohmann::json j;
+    j["format"] = "coif-hair-asset";
+    j["style"] = c.name;
+    j["database"] = c.database;
+    j["database_records"] = c.database_records;
+    j["coif_version"] = "0.1.0";
+    j["layout"] = {{"core_radius", L.core_radius}, {"layers", L.layers}, {"s_t", L.s_t}, {"s_u", L.s_u},
+                   {"grid_s", L.grid_s}, {"grid_r", L.grid_r}, {"mesh_t", L.mesh_t}, {"mesh_u", L.mesh_u},
+                   {"gaussian_width", L.gaussian_width}};
+    j["lighting_rows"] = p.lighting_rows;
+    j["triangles"] = p.triangles;
+    j["bounds"] = {vec_json(p.bounds_min), vec_json(p.bounds_max)};
+    j["frame"] = {vec_json(c.frame_min), vec_json(c.frame_max)};
+    j["tangent_spread"] = c.tangent_spread;
+    j["auto_fiber_radius"] = c.auto_fiber_radius;
+    j["shadow_strands"] = c.shadow_strands;
+    const RecordAtlas& a = c.atlas;
+    nlohmann::json lo = nlohmann::json::array(), scale = nlohmann::json::array();
+    for (int part = 0; part < kAtlasParts; ++part) {
+        lo.push_back(vec_json(a.lo[part]));
+        scale.push_back(vec_json(a.scale[part]));
+    }
+    j["atlas"] = {{"width", a.width}, {"height", a.height}, {"tiles_per_row", a.tiles_per_row}, {"views", a.views},
+                  {"hrir_length", a.hrir_length}, {"lo", lo}, {"scale", scale}, {"re_norm", a.re_norm}};
+    const DensityGrid& g = c.grid;
+    j["grid"] = {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"origin", vec_json(g.origin)}, {"voxel", g.voxel},
+                 {"strands_min", vec_json(g.strands_min)}, {"strands_max", vec_json(g.strands_max)}};
+    j["params"] = gl::shell_settings_json(c.defaults);
+    return j;
+}
+
+// ---- reading ----------------------------------------------------------------------------------------
+
+class Reader {
+public:
+    Reader(std::span<const std::byte> b, const std::filesystem::path& f) : data(b), file(f) {}
+
+    [[noreturn]] void fail(std::size_t at, const std::string& what) const {
+        throw Error(file, "byte " + std::to_string(at), what);
+    }
+    [[noreturn]] void fail(const std::string& place, const std::string& what) const { throw Error(file, place, what); }
+
+    // The next section, which must be `name` with elements of T.
+    template <class T>
+    std::vector<T> section(const char (&name)[5]) {
+        const std::size_t start = at;
+        if (data.size() - at < 16) fail(at, "truncated: section " + std::string(name) + " is missing");
+        const auto t = bytes::get<std::uint32_t>(data.data() + at);
+        const auto size = bytes::get<std::uint32_t>(data.data() + at + 4);
+        const auto count = bytes::get<std::uint64_t>(data.data() + at + 8);
+        if (t != tag(name)) fail(at, "expected section " + std::string(name) + ", found " + tag_name(t));
+        if (size != sizeof(T))
+            fail(at + 4, "section " + std::string(name) + " has elements of " + std::to_string(size) + " bytes (expected " +
+                             std::to_string(sizeof(T)) + ")");
+        if (count > kMaxElements) fail(at + 8, "section " + std::string(name) + ": absurd element count " + std::to_string(count));
+        at += 16;
+        const std::uint64_t n = count * sizeof(T);
+        if (n > data.size() - at)
+            fail(start, "truncated: section " + std::string(name) + " needs " + std::to_string(n) + " bytes, " +
+                            std::to_string(data.size() - at) + " are left");
+        // Copied once into uninitialised storage (a sized vector would zero it first: twice the page faults). The
+        // section starts 8-byte aligned in a page-aligned mapping or buffer, aligned enough for T.
+        std::vector<T> items;
+        items.reserve(count);
+        const T* first = reinterpret_cast<const T*>(data.data() + at);
+        items.insert(items.end(), first, first + count);
+        at += n;
+        const std::size_t padded = (at + 7) / 8 * 8;
+        if (padded > data.size()) fail(at, "truncated: section " + std::string(name) + "'s padding is missing");
+        at = padded;
+        return items;
+    }
+
+    std::span<const std::byte> data;
+    const std::filesystem::path& file;
+    std::size_t at = kHeader;
+};
+
+bool finite(float v) { return std::isfinite(v); }
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+    for (int i = 0; i < N; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+bool finite(const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); }
+
+glm::vec3 vec3_of(const nlohmann::json& j, const std::string& place, const Reader& r) {
+    if (!j.is_array() || j.size() != 3) r.fail(place, "expected 3 numbers");
+    glm::vec3 v;
+    for (int i = 0; i < 3; ++i) {
+        if (!j[i].is_number()) r.fail(place, "expected 3 numbers");
+        v[i] = j[i].get<float>();
+    }
+    if (!finite(v)) r.fail(place, "not finite");
+    return v;
+}
+glm::vec4 vec4_of(const nlohmann::json& j, const std::string& place, const Reader& r) {
+    if (!j.is_array() || j.size() != 4) r.fail(place, "expected 4 numbers");
+    glm::vec4 v;
+    for (int i = 0; i < 4; ++i) {
+        if (!j[i].is_number()) r.fail(place, "expected 4 numbers");
+        v[i] = j[i].get<float>();
+    }
+    if (!finite(v)) r.fail(place, "not finite");
+    return v;
+}
+
+template <class T>
+T field(const nlohmann::json& j, const char* key, const char* where, const Reader& r) {
+    try {
+        return json_field<T>(j, key, where);
+    } catch (const Error& e) {
+        r.fail(e.place(), e.problem());
+    }
+}
+int int_in(const nlohmann::json& j, const char* key, const char* where, int lo, int hi, const Reader& r) {
+    const auto v = field<long long>(j, key, where, r);
+    if (v < lo || v > hi)
+        r.fail(std::string(where) + "/" + key, "must be " + std::to_string(lo) + ".." + std::to_string(hi) + ", not " + std::to_string(v));
+    return static_cast<int>(v);
+}
+double double_of(const nlohmann::json& j, const char* key, const char* where, const Reader& r) {
+    const auto v = field<double>(j, key, where, r);
+    if (!std::isfinite(v) || std::abs(v) > 3.0e38) r.fail(std::string(where) + "/" + key, "not a finite float");
+    return v;
+}
+float float_of(const nlohmann::json& j, const char* key, const char* where, const Reader& r) {
+    return static_cast<float>(double_of(j, key, where, r));
+}
+
+}  // namespace
+
+std::vector<std::byte> hair_asset_bytes(const CookedShells& c) {
+    const PreparedShells& p = c.shells;
+    Writer w;
+    const std::string meta = meta_json(c).dump();
+    w.section("META", std::span<const char>(meta.data(), meta.size()));
+    w.section("VERT", std::span<const ShellVertex>(p.vertices));
+    w.section("INDX", std::span<const std::uint32_t>(p.indices));
+    std::vector<MeshRange> meshes;
+    for (const auto& proto : p.meshes) meshes.insert(meshes.end(), proto.begin(), proto.end());
+    w.section("MESH", std::span<const MeshRange>(meshes));
+    std::vector<std::uint32_t> protos(p.prototypes.begin(), p.prototypes.end());
+    w.section("PROT", std::span<const std::uint32_t>(protos));
+    w.section("SECT", std::span<const ShellSector>(p.sectors));
+    std::vector<std::uint32_t> cluster_proto(p.cluster_proto.begin(), p.cluster_proto.end());
+    w.section("CPRO", std::span<const std::uint32_t>(cluster_proto));
+    w.section("INST", std::span<const ShellInstance>(p.instances));
+    w.section("CIDS", std::span<const std::uint32_t>(p.cluster_ids));
+    w.section("CCEN", std::span<const glm::vec3>(p.cluster_centre));
+    w.section("SAMP", std::span<const LightingSample>(p.samples));
+    w.section("ATLS", std::span<const std::uint8_t>(c.atlas.texels));
+    w.section("MALP", std::span<const float>(c.atlas.mean_alpha));
+    w.section("MA0_", std::span<const float>(c.atlas.mean_a0));
+    w.section("GDIA", std::span<const glm::vec4>(c.grid.diagonal_xy));
+    w.section("GOFF", std::span<const glm::vec2>(c.grid.off_diagonal));
+    std::vector<std::byte>& out = w.out;
+    std::memcpy(out.data(), kMagic, 8);
+    std::memcpy(out.data() + 8, &kHairAssetVersion, 4);
+    std::memcpy(out.data() + 12, &w.count, 4);
+    const std::uint64_t size = out.size();
+    std::memcpy(out.data() + 16, &size, 8);
+    const std::uint64_t sum = checksum(std::span<const std::byte>(out).subspan(kHeader));
+    std::memcpy(out.data() + 24, &sum, 8);
+    return out;
+}
+
+void write_hair_asset(const std::filesystem::path& path, const CookedShells& cooked) {
+    write_file_atomic(path, hair_asset_bytes(cooked));
+}
+
+CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesystem::path& file) {
+    Reader r(data, file);
+    if (data.size() < kHeader)
+        r.fail(data.size(), "truncated: " + std::to_string(data.size()) + " bytes is shorter than the 32-byte header");
+    if (std::memcmp(data.data(), kMagic, 8) != 0) r.fail(0, "not a coif hair asset (bad magic)");
+    const auto version = bytes::get<std::uint32_t>(data.data() + 8);
+    if (version != kHairAssetVersion)
+        r.fail(8, "asset format version " + std::to_string(version) + " (this coif reads version " +
+                      std::to_string(kHairAssetVersion) + "; bake the asset again with this coif)");
+    const auto sections = bytes::get<std::uint32_t>(data.data() + 12);
+    if (sections != kSections) r.fail(12, std::to_string(sections) + " sections (version 1 has " + std::to_string(kSections) + ")");
+    const auto size = bytes::get<std::uint64_t>(data.data() + 16);
+    if (size != data.size())
+        r.fail(16, "the header says " + std::to_string(size) + " bytes, the file has " + std::to_string(data.size()) +
+                       " (truncated or extended)");
+    const auto sum = bytes::get<std::uint64_t>(data.data() + 24);
+    if (sum != checksum(data.subspan(kHeader))) r.fail(24, "checksum mismatch (the file is corrupt)");
+
+    CookedShells c;
+    c.source = file.string();
+    const std::vector<char> meta_text = r.section<char>("META");
+    const nlohmann::json meta = [&] {
+        try {
+            return parse_json(std::string_view(meta_text.data(), meta_text.size()), file);
+        } catch (const Error& e) {
+            r.fail("META: " + e.place(), e.problem());
+        }
+    }();
+    if (!meta.is_object() || meta.value("format", "") != "coif-hair-asset") r.fail("META", "not a coif hair asset's metadata");
+    c.name = field<std::string>(meta, "style", "META", r);
+    c.database = field<std::string>(meta, "database", "META", r);
+    c.database_records = field<std::uint64_t>(meta, "database_records", "META", r);
+    PreparedShells& p = c.shells;
+    if (!meta.contains("layout") || !meta["layout"].is_object()) r.fail("META/layout", "missing");
+    const nlohmann::json& lj = meta["layout"];
+    DiskLayout& L = p.layout;
+    L.layers = int_in(lj, "layers", "META/layout", 1, 64, r);
+    L.s_t = int_in(lj, "s_t", "META/layout", 1, kMaxLayoutCount, r);
+    L.s_u = int_in(lj, "s_u", "META/layout", 1, kMaxLayoutCount, r);
+    L.grid_s = int_in(lj, "grid_s", "META/layout", 1, kMaxLayoutCount, r);
+    L.grid_r = int_in(lj, "grid_r", "META/layout", 1, kMaxLayoutCount, r);
+    L.mesh_t = int_in(lj, "mesh_t", "META/layout", 1, kMaxMeshSubdivision, r);
+    L.mesh_u = int_in(lj, "mesh_u", "META/layout", 1, kMaxMeshSubdivision, r);
+    L.core_radius = double_of(lj, "core_radius", "META/layout", r);
+    L.gaussian_width = double_of(lj, "gaussian_width", "META/layout", r);
+    if (!(L.core_radius >= 0 && L.core_radius < 1)) r.fail("META/layout/core_radius", "must be in [0, 1)");
+    if (L.sector_count() > kMaxElements) r.fail("META/layout", "absurd sector count");
+    p.lighting_rows = int_in(meta, "lighting_rows", "META", 2, 1 << 16, r);
+    p.triangles = field<std::size_t>(meta, "triangles", "META", r);
+    const auto box = [&](const char* key, glm::vec3& lo, glm::vec3& hi) {
+        if (!meta.contains(key) || !meta[key].is_array() || meta[key].size() != 2)
+            r.fail(std::string("META/") + key, "expected [min, max]");
+        lo = vec3_of(meta[key][0], std::string("META/") + key + "/0", r);
+        hi = vec3_of(meta[key][1], std::string("META/") + key + "/1", r);
+    };
+    box("bounds", p.bounds_min, p.bounds_max);
+    box("frame", c.frame_min, c.frame_max);
+    c.tangent_spread = float_of(meta, "tangent_spread", "META", r);
+    c.auto_fiber_radius = float_of(meta, "auto_fiber_radius", "META", r);
+    if (!(c.auto_fiber_radius > 0)) r.fail("META/auto_fiber_radius", "must be > 0");
+    c.shadow_strands = field<std::uint64_t>(meta, "shadow_strands", "META", r);
+    if (!meta.contains("atlas") || !meta["atlas"].is_object()) r.fail("META/atlas", "missing");
+    const nlohmann::json& aj = meta["atlas"];
+    RecordAtlas& a = c.atlas;
+    a.width = int_in(aj, "width", "META/atlas", 1, 1 << 16, r);
+    a.height = int_in(aj, "height", "META/atlas", 1, 1 << 16, r);
+    a.tiles_per_row = int_in(aj, "tiles_per_row", "META/atlas", 1, 1 << 16, r);
+    a.views = int_in(aj, "views", "META/atlas", 1, 4096, r);
+    a.hrir_length = int_in(aj, "hrir_length", "META/atlas", 1, 4096, r);
+    a.re_norm = float_of(aj, "re_norm", "META/atlas", r);
+    for (int part = 0; part < kAtlasParts; ++part) {
+        if (!aj.contains("lo") || !aj["lo"].is_array() || aj["lo"].size() != kAtlasParts || !aj.contains("scale") ||
+            !aj["scale"].is_array() || aj["scale"].size() != kAtlasParts)
+            r.fail("META/atlas", "lo and scale must be 3 × 4 numbers");
+        a.lo[part] = vec4_of(aj["lo"][part], "META/atlas/lo", r);
+        a.scale[part] = vec4_of(aj["scale"][part], "META/atlas/scale", r);
+        if (!glm::all(glm::greaterThan(a.scale[part], glm::vec4(0.0f)))) r.fail("META/atlas/scale", "must be > 0");
+    }
+    if (a.width != a.tiles_per_row * (a.hrir_length + 2)) r.fail("META/atlas", "width does not match tiles_per_row × (hrir_length + 2)");
+    if (!meta.contains("grid") || !meta["grid"].is_object()) r.fail("META/grid", "missing");
+    const nlohmann::json& gj = meta["grid"];
+    DensityGrid& g = c.grid;
+    if (!gj.contains("dims") || !gj["dims"].is_array() || gj["dims"].size() != 3) r.fail("META/grid/dims", "expected 3 integers");
+    for (int i = 0; i < 3; ++i) {
+        if (!gj["dims"][i].is_number_integer()) r.fail("META/grid/dims", "expected 3 integers");
+        const auto d = gj["dims"][i].get<long long>();
+        if (d < 1 || d > 512) r.fail("META/grid/dims", "each must be 1..512");
+        g.dims[i] = static_cast<int>(d);
+    }
+    g.origin = vec3_of(gj.value("origin", nlohmann::json()), "META/grid/origin", r);
+    g.voxel = float_of(gj, "voxel", "META/grid", r);
+    if (!(g.voxel > 0)) r.fail("META/grid/voxel", "must be > 0");
+    g.strands_min = vec3_of(gj.value("strands_min", nlohmann::json()), "META/grid/strands_min", r);
+    g.strands_max = vec3_of(gj.value("strands_max", nlohmann::json()), "META/grid/strands_max", r);
+    if (!meta.contains("params")) r.fail("META/params", "missing");
+    try {
+        c.defaults = gl::shell_settings_from_json(meta["params"], file.string());
+    } catch (const Error& e) {
+        r.fail("META/params: " + e.place(), e.problem());
+    }
+
+    // The arrays, and every count and index they must agree on.
+    p.vertices = r.section<ShellVertex>("VERT");
+    p.indices = r.section<std::uint32_t>("INDX");
+    const std::vector<MeshRange> meshes = r.section<MeshRange>("MESH");
+    const std::vector<std::uint32_t> protos = r.section<std::uint32_t>("PROT");
+    p.sectors = r.section<ShellSector>("SECT");
+    const std::vector<std::uint32_t> cluster_proto = r.section<std::uint32_t>("CPRO");
+    p.instances = r.section<ShellInstance>("INST");
+    p.cluster_ids = r.section<std::uint32_t>("CIDS");
+    p.cluster_centre = r.section<glm::vec3>("CCEN");
+    p.samples = r.section<LightingSample>("SAMP");
+    a.texels = r.section<std::uint8_t>("ATLS");
+    a.mean_alpha = r.section<float>("MALP");
+    a.mean_a0 = r.section<float>("MA0_");
+    g.diagonal_xy = r.section<glm::vec4>("GDIA");
+    g.off_diagonal = r.section<glm::vec2>("GOFF");
+    if (r.at != data.size()) r.fail(r.at, "unexpected bytes after the last section");
+
+    const std::size_t P = protos.size(), C = cluster_proto.size(), per_proto = L.sector_count();
+    if (P == 0 || C == 0) r.fail("PROT", "the asset has no clusters");
+    p.prototypes.assign(protos.begin(), protos.end());
+    if (meshes.size() != P * static_cast<std::size_t>(L.layers)) r.fail("MESH", "expected prototypes × layers mesh ranges");
+    p.meshes.assign(P, {});
+    for (std::size_t q = 0; q < P; ++q) {
+        for (int j = 0; j < L.layers; ++j) {
+            const MeshRange& m = meshes[q * L.layers + j];
+            const std::string place = "MESH " + std::to_string(q * L.layers + j);
+            if (m.count < 0 || m.count % 3 || m.base_vertex < 0 || m.vertex_count < 1 ||
+                std::uint64_t(m.first) + std::uint64_t(m.count) > p.indices.size() ||
+                std::uint64_t(m.base_vertex) + std::uint64_t(m.vertex_count) > p.vertices.size())
+                r.fail(place, "outside the vertex or index arrays");
+            for (std::int32_t i = 0; i < m.count; ++i)
+                if (p.indices[m.first + static_cast<std::uint32_t>(i)] >= static_cast<std::uint32_t>(m.vertex_count))
+                    r.fail(place, "an index outside its mesh's vertices");
+            p.meshes[q].push_back(m);
+        }
+    }
+    if (p.sectors.size() != P * per_proto) r.fail("SECT", "expected prototypes × the layout's sectors");
+    const std::size_t atlas_records = a.mean_alpha.size();
+    if (a.mean_a0.size() != atlas_records) r.fail("MA0_", "one mean per atlas record expected");
+    const std::uint64_t tiles_needed = atlas_records * kAtlasParts;
+    const std::uint64_t tile_rows = (tiles_needed + a.tiles_per_row - 1) / a.tiles_per_row;
+    if (tile_rows * static_cast<std::uint64_t>(a.views + 2) > static_cast<std::uint64_t>(a.height))
+        r.fail("META/atlas", "the atlas is too small for its records");
+    if (a.texels.size() != static_cast<std::size_t>(a.width) * a.height * 4) r.fail("ATLS", "expected width × height × 4 bytes");
+    for (std::size_t s = 0; s < p.sectors.size(); ++s) {
+        const ShellSector& q = p.sectors[s];
+        for (int n = 0; n < gl::kMaxShellNeighbours; ++n)
+            if (q.id[n] >= atlas_records) r.fail("SECT " + std::to_string(s), "a record id outside the atlas");
+        if (!finite(q.weight) || !finite(q.shadow)) r.fail("SECT " + std::to_string(s), "not finite");
+    }
+    for (const std::uint32_t v : cluster_proto)
+        if (v >= P) r.fail("CPRO", "a prototype index out of range");
+    p.cluster_proto.assign(cluster_proto.begin(), cluster_proto.end());
+    if (p.instances.size() != C || p.cluster_ids.size() != C || p.cluster_centre.size() != C)
+        r.fail("INST", "one instance, id and centre per cluster expected");
+    for (std::size_t i = 0; i < C; ++i) {
+        const ShellInstance& in = p.instances[i];
+        if (!finite(in.model) || in.info.x != p.cluster_proto[i] * per_proto || in.info.y != i || p.cluster_ids[i] != i ||
+            !finite(p.cluster_centre[i]))
+            r.fail("INST " + std::to_string(i), "does not match its cluster");
+    }
+    if (p.samples.size() != C * static_cast<std::size_t>(p.lighting_rows)) r.fail("SAMP", "expected clusters × lighting_rows samples");
+    for (std::size_t i = 0; i < p.samples.size(); ++i) {
+        const LightingSample& q = p.samples[i];
+        if (!finite(q.position) || !finite(q.tangent) || !finite(q.normal) || !finite(q.tilt_mean) || !finite(q.tilt_a) ||
+            !finite(q.tilt_b))
+            r.fail("SAMP " + std::to_string(i), "not finite");
+    }
+    for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+        const ShellVertex& v = p.vertices[i];
+        if (!finite(v.position) || !finite(v.tangent) || !finite(v.normal) || !finite(v.texcoord) || !finite(v.axis_normal))
+            r.fail("VERT " + std::to_string(i), "not finite");
+    }
+    for (const float v : a.mean_alpha)
+        if (!finite(v)) r.fail("MALP", "not finite");
+    for (const float v : a.mean_a0)
+        if (!finite(v)) r.fail("MA0_", "not finite");
+    const std::size_t voxels = static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z;
+    if (g.diagonal_xy.size() != voxels || g.off_diagonal.size() != voxels) r.fail("GDIA", "expected one value per voxel");
+    for (std::size_t i = 0; i < voxels; ++i)
+        if (!finite(g.diagonal_xy[i]) || !finite(g.off_diagonal[i])) r.fail("GDIA", "not finite");
+    return c;
+}
+
+CookedShells read_hair_asset(const std::filesystem::path& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw Error(path, "", std::string("cannot open: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        throw Error(path, "", "not a regular file");
+    }
+    const auto size = static_cast<std::size_t>(st.st_size);
+    if (size == 0) {
+        ::close(fd);
+        throw Error(path, "byte 0", "truncated: the file is empty");
+    }
+    void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);  // read ahead in one go
+    ::close(fd);
+    if (map == MAP_FAILED) throw Error(path, "", std::string("cannot map: ") + std::strerror(errno));
+    struct Unmap {
+        void* p;
+        std::size_t n;
+        ~Unmap() { ::munmap(p, n); }
+    } unmap{map, size};
+    return parse_hair_asset(std::span<const std::byte>(static_cast<const std::byte*>(map), size), path);
+}
+
+bool is_hair_asset(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[8] = {};
+    return in.read(magic, 8) && std::memcmp(magic, kMagic, 8) == 0;
+}
+
+}  // namespace coif
