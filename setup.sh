@@ -4,6 +4,8 @@
 #   ./setup.sh render      build (release) and render the embedded default scene to coif-default.png
 #   ./setup.sh test        build (release) and run the whole test suite (what CI runs)
 #   ./setup.sh test-slow   build (release) and run the slow validation (label "slow": brute-force checks)
+#   ./setup.sh test-install  build (release), then the install and consumer-package test (tests/consumer/run.sh):
+#                          the runtime alone built shared and installed, a project outside the tree built against it
 #   ./setup.sh test-asan   build the asan preset (AddressSanitizer + UBSan) and run the suite under it
 #   ./setup.sh fuzz [S]    build the fuzz preset (clang-14 libFuzzer + ASan + UBSan) and fuzz every parser for S
 #                          seconds each (default 60); new inputs go to build/fuzz/corpus/, crashes to build/fuzz/crashes/
@@ -63,9 +65,11 @@ case "$action" in
              ctest --preset release ;;
   test-slow) build release
              ctest --preset release-slow ;;
+  test-install) build release
+             tests/consumer/run.sh ;;
   test-asan) build asan
              ctest --preset asan ;;
   fuzz)      build fuzz
              fuzz_all "${2:-60}" ;;
-  *)         echo "usage: $0 [build|render|test|test-slow|test-asan|fuzz [seconds]]" >&2; exit 2 ;;
+  *)         echo "usage: $0 [build|render|test|test-slow|test-install|test-asan|fuzz [seconds]]" >&2; exit 2 ;;
 esac
