@@ -176,12 +176,13 @@ void FragmentLists::finish() {
     check_errors("FragmentLists::finish");
 }
 
-void FragmentLists::resolve(const glm::vec3& background) {
+void FragmentLists::resolve(const glm::vec3& background, bool over, glm::ivec2 origin) {
     const std::uint32_t zero = 0;
     glNamedBufferSubData(over_limit_.id(), 0, sizeof zero, &zero);
     resolve_.use();
     glUniform1ui(resolve_.uniform("u_capacity"), static_cast<GLuint>(capacity_));
     glUniform3fv(resolve_.uniform("u_background"), 1, &background.x);
+    glUniform1i(resolve_.uniform("u_over"), over ? 1 : 0);
     glBindImageTexture(0, heads_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(1, resolved_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 1, over_limit_.id());
@@ -193,12 +194,23 @@ void FragmentLists::resolve(const glm::vec3& background) {
     copy_.use();
     glBindTextureUnit(0, resolved_.id());
     glUniform1i(copy_.uniform("u_image"), 0);
-    glDisable(GL_BLEND);
+    glUniform2i(copy_.uniform("u_origin"), origin.x, origin.y);
+    if (over) {  // premultiplied "over" the frame; an sRGB target encodes the blended linear result
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+    } else {
+        glDisable(GL_BLEND);
+    }
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glBindVertexArray(empty_vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+    if (over) {
+        glDisable(GL_BLEND);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+    }
     resolved_this_frame_ = true;
     check_errors("FragmentLists::resolve");
 }

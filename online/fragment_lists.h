@@ -87,8 +87,11 @@ public:
     // shell_abuffer.frag after this, then resolve() if wanted, then finish().
     void begin(int width, int height);
     // Composites the lists over `background` (a compute pass into an RGBA32F texture) and copies the
-    // result into the bound draw framebuffer, full screen.
-    void resolve(const glm::vec3& background);
+    // result into the bound draw framebuffer's viewport (whose origin in the framebuffer is `origin`). With `over`,
+    // the lists are composited over nothing instead and blended premultiplied "over" what the framebuffer holds
+    // (ONE, ONE_MINUS_SRC_ALPHA, with GL_FRAMEBUFFER_SRGB on, so an sRGB target blends linearly); blending and
+    // GL_FRAMEBUFFER_SRGB are off afterwards.
+    void resolve(const glm::vec3& background, bool over = false, glm::ivec2 origin = glm::ivec2(0));
     // Waits for the frame and reads its figures (stats()); an overflowing frame makes the next begin()
     // grow the storage to what the counter asked for.
     void finish();

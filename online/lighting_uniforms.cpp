@@ -5,6 +5,7 @@
 #include <variant>
 #include <vector>
 
+#include "models/core/log.h"
 #include "shaders/hair_parameters.h"
 
 namespace coif::gl {
@@ -26,7 +27,7 @@ LightingTextures::LightingTextures() {
 
 bool LightingTextures::update(const shading::HairParams& hair, const shading::LightingConfig& config) {
     if (have_ms_ && same_lighting_tables(hair_, config_, hair, config)) return false;
-    std::fprintf(stderr, "coif: building the dual-scattering tables of these hair parameters\n");
+    log_message(LogLevel::info, "building the dual-scattering tables of these hair parameters");
     const shading::LightingEvaluator evaluator(hair, config);  // validates, builds the tables
     const shading::LutSet ms = evaluator.ms_tables().set();
     for (int i = 0; i < shading::kLutCount; ++i)

@@ -155,7 +155,7 @@ std::string LightingPass::tangents_define(const ShellSettings& s) {
     return "SHELL_TANGENTS " + std::to_string(s.tangent_spread != 0.0f ? 4 : 1);
 }
 
-void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera) {
+void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye) {
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     const std::string define = tangents_define(s);
     auto& slot = programs_[define];
@@ -165,7 +165,7 @@ void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera
     bind_inputs(program, gpu, s);
     glUniform1i(program.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(program.uniform("u_rows"), gpu.lighting_rows);
-    glUniform3fv(program.uniform("u_eye"), 1, &camera.eye.x);
+    glUniform3fv(program.uniform("u_eye"), 1, &eye.x);
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(static_cast<GLuint>((gpu.sample_count + 31) / 32), 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -173,7 +173,8 @@ void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const Camera
 
 // ---- ShellsPass ------------------------------------------------------------------------------------
 
-const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& L) {
+const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& L,
+                                           DepthTest depth) {
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
     const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
@@ -181,7 +182,8 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
                                            "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
                                            "SHELL_FOURIER " + std::to_string(s.fourier_order),
                                            std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
-                                           lighting == 2 ? LightingPass::tangents_define(s) : "SHELL_TANGENTS 1"};
+                                           lighting == 2 ? LightingPass::tangents_define(s) : "SHELL_TANGENTS 1",
+                                           "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};
     std::string key = abuffer ? "abuffer" : "blend";
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = programs_[key];
@@ -192,16 +194,19 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
     return *slot;
 }
 
-double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const Camera& camera, const ShellSettings& s,
-                        glm::vec2 jitter, bool floor_only, const LightingPass& lighting) {
+double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, const ShellDraw& d,
+                        const ShellSettings& s, bool floor_only, const LightingPass& lighting) {
     const DiskLayout& L = gpu.layout;
     const bool exact = !floor_only && s.compositing == Compositing::exact;
     if (exact && !lists_) lists_ = std::make_unique<FragmentLists>();
-    const Program& prog = floor_only ? floor_ : shading_program(exact, s, gpu.lighting_rows, L);
+    const FrameTarget& t = d.target;
+    const int width = t.viewport.z, height = t.viewport.w;
+    const DepthTest depth = floor_only || t.scene_depth == 0 ? DepthTest::none : t.depth_test;
+    const Program& prog = floor_only ? floor_ : shading_program(exact, s, gpu.lighting_rows, L, depth);
     prog.use();
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
-    const glm::vec3 shift(2.0f * jitter.x / camera.width, -2.0f * jitter.y / camera.height, 0.0f);
-    const glm::mat4 vp = glm::translate(glm::mat4(1.0f), shift) * camera.projection() * camera.view();
+    const glm::vec3 shift(2.0f * d.jitter.x / width, -2.0f * d.jitter.y / height, 0.0f);
+    const glm::mat4 vp = glm::translate(glm::mat4(1.0f), shift) * view.projection * view.view;
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
     if (!floor_only) {
         glBindTextureUnit(0, gpu.atlas.id());
@@ -221,20 +226,30 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         glUniform1i(prog.uniform("u_layers"), L.layers);
         glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
         glUniform1f(prog.uniform("u_re_scale"), 1.0f / gpu.re_norm);
-        glUniform3fv(prog.uniform("u_eye"), 1, &camera.eye.x);
+        glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
         if (s.lighting_per_fragment) lighting.bind_inputs(prog, gpu, s);
+        if (depth != DepthTest::none) {
+            glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
+            glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
+            // The lists' framebuffer is the viewport's size; a blended draw goes straight into the host's framebuffer.
+            const glm::ivec2 offset = exact ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
+            glUniform2i(prog.uniform("u_scene_depth_offset"), offset.x, offset.y);
+        }
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.instances.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.sectors.id());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    GLint target_framebuffer = 0;
     if (exact) {  // append every fragment to its pixel's list; no blending, no colour output
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
-        lists_->begin(camera.width, camera.height);
+        if (d.first) {
+            glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer_);
+            lists_->begin(width, height);
+        }
         glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));
+        glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
         glDisable(GL_BLEND);
     } else {
+        glViewport(t.viewport.x, t.viewport.y, width, height);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over" (004 eq. 14)
     }
@@ -246,7 +261,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     std::iota(order.begin(), order.end(), 0);
     if (s.compositing == Compositing::sorted) {
         std::vector<float> dist(order.size());
-        for (std::size_t c = 0; c < order.size(); ++c) dist[c] = glm::distance(camera.eye, shells.cluster_centre[c]);
+        for (std::size_t c = 0; c < order.size(); ++c) dist[c] = glm::distance(view.eye, shells.cluster_centre[c]);
         std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
     }
     const GLint layer_loc = floor_only ? -1 : prog.uniform("u_layer");
@@ -270,16 +285,16 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     double resolve_ms = 0;
-    if (exact) {  // the per-pixel sort and "over" of the lists, into the caller's framebuffer
+    if (exact && d.last) {  // the per-pixel sort and "over" of the lists, into the caller's framebuffer
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         Clock::time_point t_resolve;
         if (s.timed) {
             glFinish();
             t_resolve = Clock::now();
         }
-        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target_framebuffer));
-        glViewport(0, 0, camera.width, camera.height);
-        lists_->resolve(s.background);
+        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target_framebuffer_));
+        glViewport(t.viewport.x, t.viewport.y, width, height);
+        lists_->resolve(s.background, t.over, glm::ivec2(t.viewport.x, t.viewport.y));
         if (s.timed) {
             glFinish();
             resolve_ms = wall_ms_since(t_resolve);

@@ -19,6 +19,7 @@
 #include "models/core/camera.h"
 #include "models/absorption_map.h"
 #include "online/fragment_lists.h"
+#include "online/frame.h"
 #include "online/gl.h"
 #include "online/lighting_uniforms.h"
 #include "online/shells/prepared_shells.h"
@@ -36,6 +37,9 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
 inline constexpr int kLightingTexels = 8;  // RGBA texels per lighting sample: the 27 floats C_k, S_k, V and one more
                                            // (shaders/gl/shell_lighting.comp)
 inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
+// Texture units: 0 the record atlas, 1 the lighting sums, 2 … 1 + kLutCount the lighting tables, then the painted
+// absorption, then the host scene's depth (shaders/gl/scene_depth.glsl).
+inline constexpr int kSceneDepthUnit = 3 + shading::kLutCount;
 
 struct ShellGpu {
     // Needs a current GL 4.5 context; throws coif::Error if the atlas exceeds the GPU's texture size.
@@ -77,8 +81,8 @@ private:
 
 class LightingPass {
 public:
-    // Writes gpu.lighting for the eye of `camera`.
-    void run(const ShellGpu& gpu, const ShellSettings& s, const Camera& camera);
+    // Writes gpu.lighting for `eye` (in the shells' space).
+    void run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye);
     // The uniforms and bindings that the lighting pass and the per-fragment lighting reference
     // (ShellSettings::lighting_per_fragment) read: the tables, the parameters, the lights, their shadows, σa.
     void bind_inputs(const Program& program, const ShellGpu& gpu, const ShellSettings& s) const;
@@ -91,21 +95,34 @@ private:
     LightingTextures tables_;  // the lighting module's tables (online/lighting_uniforms.h)
 };
 
+// One draw of the shells within a frame (ShellsPass::draw): the target, and for the exact compositing, whether this
+// draw begins the frame's fragment lists and whether it ends them (resolves them into the target); several draws (the
+// instances of the hair) between share one set of lists and so composite exactly with each other.
+struct ShellDraw {
+    FrameTarget target;
+    bool first = true, last = true;
+    float distance_scale = 1.0f;  // world units per unit of the shells' space (the instance's scale)
+    glm::vec2 jitter{0.0f};       // sub-pixel shift of the image, pixels (x right, y down)
+};
+
 class ShellsPass {
 public:
-    // Draws the shells into the bound framebuffer, shifted by `jitter` pixels (x right, y down). `floor`: the same
-    // shells in the same order with a trivial shader (coif bench render's floor). Returns the resolve's wall
-    // time in ms with s.timed and exact compositing, else 0.
-    double draw(const ShellGpu& gpu, const PreparedShells& shells, const Camera& camera, const ShellSettings& s,
-                glm::vec2 jitter, bool floor, const LightingPass& lighting);
+    // Draws the shells seen from `view` into the framebuffer bound for drawing (exact compositing: into the fragment
+    // lists, resolved into that framebuffer by the draw marked `last`). `floor`: the same shells in the same order with
+    // a trivial shader (coif bench render's floor). Returns the resolve's wall time in ms with s.timed and exact
+    // compositing, else 0.
+    double draw(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, const ShellDraw& d,
+                const ShellSettings& s, bool floor, const LightingPass& lighting);
     // The exact compositing's lists (made on first use), or null before.
     FragmentLists* lists() const { return lists_.get(); }
 
 private:
-    const Program& shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& layout);
+    const Program& shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
+                                   DepthTest depth);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
     std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use
     std::unique_ptr<FragmentLists> lists_;
+    GLint target_framebuffer_ = 0;  // the exact compositing's: bound when its first draw began
 };
 
 }  // namespace coif::gl

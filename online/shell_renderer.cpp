@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "models/core/error.h"
+#include "models/core/log.h"
 #include "models/core/units.h"
 #include "online/shell_passes.h"
 #include "online/shells/record_atlas.h"
@@ -19,6 +20,17 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
+// The lights of one instance of the hair as its own space sees them, and what depends on them: their shadows and the
+// lighting sums (draw_frame). Swapped into the ShellGpu while that instance is drawn.
+struct InstanceLights {
+    std::vector<SrbfLight> lights;  // turned into the hair's space
+    Buffer buffer, shadows;
+    int count = 0;
+    Texture lighting;
+    bool shadows_valid = false;
+    float shadows_radius = -1.0f;
+};
+
 struct ShellRenderer::Impl {
     ShadowPass shadow;
     LightingPass lighting;
@@ -29,7 +41,28 @@ struct ShellRenderer::Impl {
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
+    std::vector<InstanceLights> instances;  // draw_frame's, by instance index
+
+    void swap(InstanceLights& l) {
+        std::swap(gpu->lights, l.buffer);
+        std::swap(gpu->shadows, l.shadows);
+        std::swap(gpu->light_count, l.count);
+        std::swap(gpu->lighting, l.lighting);
+        std::swap(shadows_valid, l.shadows_valid);
+        std::swap(shadows_radius, l.shadows_radius);
+    }
 };
+
+namespace {
+
+void validate(const ShellSettings& s) {
+    if (!(s.tangent_spread <= 60.0f * float(kPi / 180.0))) throw Error::parameter("tangent_spread", "must be at most 60 degrees");
+    if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
+        throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));
+    if (s.fourier_order < 1 || s.fourier_order > 4) throw Error::parameter("fourier_order", "must be 1..4");
+}
+
+}  // namespace
 
 ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>()) {
     const auto start = Clock::now();
@@ -76,17 +109,78 @@ void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
 void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_absorption(map); }
 
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {
-    Impl& m = *impl_;
-    ShellSettings s = settings;
-    if (!(s.tangent_spread <= 60.0f * float(kPi / 180.0))) throw Error::parameter("tangent_spread", "must be at most 60 degrees");
-    ShellGpu& gpu = *m.gpu;
-    if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
-        throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));
-    if (s.fourier_order < 1 || s.fourier_order > 4) throw Error::parameter("fourier_order", "must be 1..4");
+    validate(settings);
+    const ShellSettings& s = settings;
     glViewport(0, 0, camera.width, camera.height);
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    ShellDraw d;
+    d.target.viewport = glm::ivec4(0, 0, camera.width, camera.height);
+    d.jitter = impl_->jitter;
+    passes(FrameView::of(camera), d, s, floor_only);
+    finish_frame(s, floor_only);
+}
 
+void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projection, std::span<const SrbfLight> lights,
+                               const ShellSettings& settings, const FrameTarget& target,
+                               std::span<const glm::mat4> instances) {
+    validate(settings);
+    if (target.viewport.z < 1 || target.viewport.w < 1) throw Error::parameter("viewport", "must have a positive size");
+    Impl& m = *impl_;
+    const glm::mat4 identity(1.0f);
+    if (instances.empty()) instances = std::span<const glm::mat4>(&identity, 1);
+    if (m.instances.size() < instances.size()) m.instances.resize(instances.size());
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+        const glm::mat4& M = instances[i];
+        // Rigid with a uniform scale s: the columns of the linear part are orthogonal and of one length.
+        const glm::mat3 A(M);
+        const float scale = std::cbrt(glm::determinant(A));
+        const glm::mat3 R = A / scale;
+        const glm::mat3 E = glm::transpose(R) * R - glm::mat3(1.0f);
+        float off = 0.0f;
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r) off = std::max(off, std::abs(E[c][r]));
+        if (!(scale > 0.0f) || !std::isfinite(scale) || off > 1e-3f || M[0][3] != 0.0f || M[1][3] != 0.0f || M[2][3] != 0.0f ||
+            M[3][3] != 1.0f)
+            throw Error::parameter("instance " + std::to_string(i),
+                                   "the transform must be a rotation, a translation and a uniform positive scale");
+        // The hair is drawn in its own space: the view times the transform, the eye and the lights turned into it.
+        FrameView v = FrameView::of(view * M, projection);
+        std::vector<SrbfLight> turned(lights.begin(), lights.end());
+        for (SrbfLight& l : turned) l.omega = glm::normalize(glm::transpose(R) * l.omega);
+        InstanceLights& il = m.instances[i];
+        if (il.lighting.id() == 0)
+            il.lighting = make_texture_2d(GL_RGBA32F, m.gpu->lighting_rows, static_cast<int>(m.gpu->clusters * kLightingTexels),
+                                          Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+        m.swap(il);
+        const bool same = il.lights.size() == turned.size() &&
+                          std::equal(turned.begin(), turned.end(), il.lights.begin(), [](const SrbfLight& a, const SrbfLight& b) {
+                              return a.L == b.L && a.omega == b.omega && a.lambda == b.lambda;
+                          });
+        if (!same || m.gpu->light_count != static_cast<int>(turned.size())) {
+            m.gpu->set_lights(turned);
+            il.lights = turned;
+            m.shadows_valid = false;
+        }
+        ShellDraw d;
+        d.target = target;
+        d.first = i == 0;
+        d.last = i + 1 == instances.size();
+        d.distance_scale = scale;
+        try {
+            passes(v, d, settings, false);
+        } catch (...) {
+            m.swap(il);
+            throw;
+        }
+        m.swap(il);
+    }
+    finish_frame(settings, false);
+}
+
+void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const ShellSettings& s, bool floor_only) {
+    Impl& m = *impl_;
+    ShellGpu& gpu = *m.gpu;
     // Shadow pass: only when the lights or the fibre radius changed.
     const float radius = fiber_radius(s);
     if (!(radius > 0.0f) || !std::isfinite(radius)) throw Error::parameter("fiber_radius", "must be finite and > 0");
@@ -102,25 +196,28 @@ void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bo
     if (s.timed) glFinish();
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
-    if (!floor_only) m.lighting.run(gpu, s, camera);
+    if (!floor_only) m.lighting.run(gpu, s, view.eye);
     if (s.timed) {
         glFinish();
         timings_.lighting_wall_ms = floor_only ? 0.0 : wall_ms_since(t_pass);
         t_pass = Clock::now();
     }
-    timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, camera, s, m.jitter, floor_only, m.lighting);
+    timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, s, floor_only, m.lighting);
     if (s.timed) {
         glFinish();
         timings_.shells_wall_ms = wall_ms_since(t_pass);
     }
     check_errors("ShellRenderer::draw");
+}
+
+void ShellRenderer::finish_frame(const ShellSettings& s, bool floor_only) {
+    Impl& m = *impl_;
     if (FragmentLists* lists = m.shells_pass.lists(); lists && !floor_only && s.compositing == Compositing::exact) {
         lists->finish();
         if (lists->stats().dropped > 0)
-            std::fprintf(stderr, "coif: exact compositing dropped %llu of %llu fragments (storage for %llu); the next frame has more\n",
-                         static_cast<unsigned long long>(lists->stats().dropped),
-                         static_cast<unsigned long long>(lists->stats().fragments),
-                         static_cast<unsigned long long>(lists->stats().capacity));
+            log_message(LogLevel::warning, "exact compositing dropped " + std::to_string(lists->stats().dropped) + " of " +
+                                               std::to_string(lists->stats().fragments) + " fragments (storage for " +
+                                               std::to_string(lists->stats().capacity) + "); the next frame has more");
     }
 }
 

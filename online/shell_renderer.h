@@ -47,12 +47,15 @@
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "online/fragment_lists.h"
+#include "online/frame.h"
 #include "online/shells/hair_asset.h"
 #include "online/shells/prepared_shells.h"
 #include "online/shells/shell_settings.h"
 #include "shaders/srbf_light.h"
 
 namespace coif::gl {
+
+struct ShellDraw;  // online/shell_passes.h
 
 struct ShellStats {
     std::size_t clusters = 0, prototypes = 0, sectors = 0, triangles = 0, lighting_samples = 0;
@@ -99,6 +102,15 @@ public:
     // Draws into the bound framebuffer (cleared to the background first). `floor` draws the same
     // shells in the same order with a trivial shader (the floor of `coif bench render`).
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);
+    // Draws into the framebuffer bound for drawing as a host's frame wants it (online/hair_renderer.h is the host-facing
+    // form): seen with `view` and `projection` (any), lit by `lights` (world space), within target.viewport, clearing
+    // nothing; with target.over the hair is blended over what is there, and with a scene depth texture the fragments
+    // behind the scene are discarded. `instances`: world-from-hair transforms (rotation, translation, uniform scale;
+    // empty: the identity), all composited together (the exact compositing sorts the fragments of every instance).
+    // Each instance keeps its own lights turned into the hair's space and their shadows, rerun only when they change.
+    // Throws coif::Error::parameter for a bad setting, viewport or transform.
+    void draw_frame(const glm::mat4& view, const glm::mat4& projection, std::span<const SrbfLight> lights,
+                    const ShellSettings& settings, const FrameTarget& target, std::span<const glm::mat4> instances = {});
     // Renders into an offscreen target of the camera's size and returns the linear RGBA image; the exact
     // compositing with samples > 1 averages f² frames, f = round(√samples), shifted to the pixel centres of
     // an f-times finer grid (supersampling with a box filter, at one frame's memory). An exact frame that
@@ -140,6 +152,8 @@ public:
     glm::vec3 bounds_max() const { return bounds_max_; }
 
 private:
+    void passes(const FrameView& view, const ShellDraw& d, const ShellSettings& s, bool floor);
+    void finish_frame(const ShellSettings& s, bool floor);
     struct Impl;
     std::unique_ptr<Impl> impl_;
     ShellStats stats_;

@@ -1,6 +1,7 @@
 // One fragment of a SATF layer mesh, blended premultiplied "over" (ONE, ONE_MINUS_SRC_ALPHA) in the
 // draw order of online/shell_passes.cpp (ShellsPass); the shading itself is shell_shade.glsl.
 #include "shaders/gl/shell_shade.glsl"
+#include "shaders/gl/scene_depth.glsl"
 
 in vec3 v_position;
 in vec3 v_tangent;
@@ -11,4 +12,7 @@ flat in uvec2 v_info;
 
 layout(location = 0) out vec4 o_color;
 
-void main() { o_color = shell_shade(v_position, v_tangent, v_normal, v_axis_normal, v_texcoord, v_info); }
+void main() {
+    if (behind_scene()) discard;
+    o_color = shell_shade(v_position, v_tangent, v_normal, v_axis_normal, v_texcoord, v_info);
+}

@@ -19,6 +19,9 @@ layout(std430, binding = 6) readonly buffer FragmentColors { uvec2 fragment_colo
 layout(std430, binding = 7) readonly buffer FragmentLinks { uvec2 fragment_links[]; };
 uniform uint u_capacity;
 uniform vec3 u_background;
+// 0: the pixel composited over u_background, opaque (alpha 1). 1: over nothing, premultiplied, alpha = 1 − the
+// fragments' transmittance, for blending (ONE, ONE_MINUS_SRC_ALPHA) over a host's frame (online/hair_renderer.h).
+uniform int u_over;
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 1, rgba32f) uniform writeonly image2D u_resolved;
@@ -76,11 +79,14 @@ void main() {
         }
     }
     if (over_limit) atomicCounterIncrement(u_pixels_over_limit);
-    vec3 color = u_background * tail_transmittance;
+    vec3 background = u_over != 0 ? vec3(0.0) : u_background;
+    vec3 color = background * tail_transmittance;
+    float transmittance = tail_transmittance;
     if (tail_alpha > 0.0) color += tail_sum / tail_alpha * (1.0 - tail_transmittance);
     for (int n = kept - 1; n >= 0; --n) {
         vec4 c = fragment_color(ids[n]);
         color = c.rgb + (1.0 - c.a) * color;
+        transmittance *= 1.0 - c.a;
     }
-    imageStore(u_resolved, pixel, vec4(color, 1.0));
+    imageStore(u_resolved, pixel, vec4(color, u_over != 0 ? 1.0 - transmittance : 1.0));
 }
