@@ -6,21 +6,16 @@
 //   target_link_libraries(game PRIVATE coif::runtime)
 //
 // Cook once, with the command: `coif bake style.json -o hair.coif` (online/shells/hair_asset.h documents the file
-// and its compatibility rule). Then, with a current OpenGL 4.5 core context (yours, or coif::gl::Context::headless()
-// for offscreen work):
+// and its compatibility rule). Then draw it into your frame with coif::HairRenderer (online/hair_renderer.h: the
+// camera, depth convention, GL state, errors, threading and lifetimes). For offscreen work without a window,
+// coif::gl::Context::headless() (online/gl_context.h) makes an EGL context.
 //
-//   coif::gl::ShellRenderer hair(coif::read_hair_asset("hair.coif"));   // uploads; throws coif::Error
-//   hair.set_lights(lights);                                            // SRBF lights (shaders/srbf_light.h)
-//   coif::Image image = hair.render(camera, settings);                  // offscreen, linear RGBA
-//
-// Errors: every function throws coif::Error (models/core/error.h), naming the file and the place. Threading: one GL
-// context per renderer, used from the thread where that context is current. Lifetimes: a renderer owns its GL
-// objects and must be destroyed while its context is current.
+// No header here includes a GL header or loader: use your own.
 #include "models/core/camera.h"
 #include "models/core/error.h"
-#include "models/core/image.h"
+#include "models/core/log.h"
 #include "online/gl_context.h"
-#include "online/shell_renderer.h"
+#include "online/hair_renderer.h"
 #include "online/shells/hair_asset.h"
 #include "online/shells/shell_settings.h"
 #include "shaders/srbf_light.h"

@@ -149,9 +149,13 @@ void FragmentLists::begin(int width, int height) {
     const std::uint32_t end = kFragmentListEnd, zero = 0;
     glClearTexImage(heads_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
     glNamedBufferSubData(counter_.id(), 0, sizeof zero, &zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-    glViewport(0, 0, width, height);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+    bind();
+}
+
+void FragmentLists::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    glViewport(0, 0, width_, height_);
     glBindImageTexture(0, heads_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, counter_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, colors_.id());

@@ -86,6 +86,9 @@ public:
     // 0), the counter (atomic binding 0) and the node buffers (storage bindings 6, 7). Draw with
     // shell_abuffer.frag after this, then resolve() if wanted, then finish().
     void begin(int width, int height);
+    // Binds the lists' framebuffer, heads, counter and nodes again (as begin() does, without clearing): for a frame
+    // drawn in several draws with other passes between them, which use the same units.
+    void bind() const;
     // Composites the lists over `background` (a compute pass into an RGBA32F texture) and copies the
     // result into the bound draw framebuffer's viewport (whose origin in the framebuffer is `origin`). With `over`,
     // the lists are composited over nothing instead and blended premultiplied "over" what the framebuffer holds

@@ -1,5 +1,8 @@
 #include "online/gl.h"
 
+#include <atomic>
+#include <chrono>
+
 #include <algorithm>
 #include <cstdio>
 #include <initializer_list>
@@ -180,7 +183,23 @@ GLuint compile(const std::string& path, const std::vector<std::string>& defines)
 
 }  // namespace
 
+namespace {
+std::atomic<double> compile_seconds{0.0};
+}
+
+double program_compile_seconds() { return compile_seconds.load(); }
+
 Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
+    const auto start = std::chrono::steady_clock::now();
+    struct Count {
+        std::chrono::steady_clock::time_point start;
+        ~Count() {
+            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            double old = compile_seconds.load();
+            while (!compile_seconds.compare_exchange_weak(old, old + s)) {
+            }
+        }
+    } count{start};
     const GLuint program = glCreateProgram();
     handle_ = ProgramHandle(program);
     std::vector<GLuint> shaders;

@@ -76,6 +76,10 @@ std::string shader_text(const std::string& path);
 // stage chosen by extension (.vert .frag .comp). Each source gets "#version 450 core", the
 // defines, shaders/gl/prelude.glsl, then its text with every `#include "shaders/…"` line replaced
 // by that file (once per program). Compile/link errors throw coif::Error with the log.
+// Seconds spent compiling and linking programs in this process so far (Program's constructor), so that load times
+// can be reported apart from shader compilation.
+double program_compile_seconds();
+
 class Program {
 public:
     Program() = default;

@@ -244,6 +244,8 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         if (d.first) {
             glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer_);
             lists_->begin(width, height);
+        } else {
+            lists_->bind();  // the shadow and lighting passes of this instance used the same units
         }
         glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));
         glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);

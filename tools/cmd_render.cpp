@@ -189,8 +189,10 @@ void add_render(CLI::App& root) {
         inputs.lights = coif::rotate_srbf_lights_y(inputs.lights, coif::cli::lights_rotation(o->rotate_lights_deg));
         std::optional<coif::AbsorptionMap> absorption;
         if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.clusters());
+        const auto t_scene = std::chrono::steady_clock::now();
         coif::gl::HairScene scene(
             coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr));
+        const double scene_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_scene).count();
         coif::gl::ShellRenderer& renderer = *scene.renderer;
         const coif::Camera& camera = scene.camera;
         // Sectors the database does not cover (sparse styles): say so before drawing them.
@@ -237,10 +239,11 @@ void add_render(CLI::App& root) {
                                    {"tangent_spread_deg", coif::degrees(double(renderer.tangent_spread(settings)))},
                                    {"fiber_radius", renderer.fiber_radius(settings)},
                                    {"coverage", coverage_json},
-                                   {"load", {{"inputs_milliseconds", inputs_ms},
-                                             {"asset", from_asset},
+                                   {"load", {{"asset", from_asset},
+                                             {"inputs_milliseconds", inputs_ms},
+                                             {"scene_milliseconds", scene_ms},
                                              {"upload_milliseconds", 1e3 * st.upload_seconds},
-                                             {"renderer_milliseconds", 1e3 * st.prepare_seconds}}},
+                                             {"program_compile_milliseconds", 1e3 * coif::gl::program_compile_seconds()}}},
                                    {"warnings", warnings}});
         const coif::gl::ShellTimings& t = renderer.timings();
         std::fprintf(stderr,
@@ -249,8 +252,12 @@ void add_render(CLI::App& root) {
                      o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, scene.lights.size(), camera.width,
                      camera.height, scene.context->renderer().c_str(), render_ms, t.lighting_wall_ms, t.shells_wall_ms,
                      st.prepare_seconds, o->output.c_str());
-        std::fprintf(stderr, "loading: %s and lights read in %.1f ms; upload %.1f ms (with the first programs' compilation %.1f ms)\n",
-                     from_asset ? "asset" : "style", inputs_ms, 1e3 * st.upload_seconds, 1e3 * st.prepare_seconds);
+        std::fprintf(stderr,
+                     "loading: %s and lights read in %.1f ms; scene %.1f ms (%s, GL context, upload %.1f ms); GL programs "
+                     "compiled in %.1f ms\n",
+                     from_asset ? "asset" : "style", inputs_ms, scene_ms,
+                     from_asset ? "no database" : "database, look-ups, atlas, shadow grid", 1e3 * st.upload_seconds,
+                     1e3 * coif::gl::program_compile_seconds());
         if (const int f = coif::gl::supersampling(settings); f > 1)
             std::fprintf(stderr, "antialiased: %d frames shifted within the pixel, averaged (--samples %d; 1 for one frame)\n",
                          f * f, settings.samples);

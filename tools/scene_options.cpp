@@ -50,6 +50,9 @@ HairStyle load_style(const std::string& path) {
         return parse_style(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
                            std::string("<embedded ") + kAsset + ">");
     }
+    if (is_hair_asset(path))
+        throw Error(path, "", "a cooked .coif asset holds no style or strands: coif render --style draws it; this command "
+                              "needs the style it was baked from");
     return read_style(path);
 }
 

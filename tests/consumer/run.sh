@@ -5,7 +5,8 @@
 #   2. This folder's consumer project, copied out of the tree so that it cannot reach the sources, configured against
 #      that prefix alone (find_package(coif COMPONENTS runtime); its CMakeLists.txt fails if the runtime's link
 #      interface names Ceres, Embree, FLANN, GLFW, GoogleTest or Benchmark), built, its ldd checked for them, and run
-#      on an asset baked by the release build: the hair must show.
+#      on an asset baked by the release build: the example host (example_host.cpp) draws a head and the hair with the
+#      public API only, and checks occlusion, its untouched pixels and its GL state.
 #   3. The release build installed whole to build/install-full: the installed coif runs and bakes.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -25,18 +26,18 @@ cmake --install build/runtime --prefix build/install-runtime > /dev/null
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp tests/consumer/CMakeLists.txt tests/consumer/main.cpp "$work/"
+cp tests/consumer/CMakeLists.txt tests/consumer/example_host.cpp "$work/"
 echo "test-install: the consumer against $root/build/install-runtime"
 cmake -S "$work" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$root/build/install-runtime"
 cmake --build "$work/build"
-ldd "$work/build/coif_consumer" > "$work/ldd.txt"
+ldd "$work/build/coif_example_host" > "$work/ldd.txt"
 if grep -Ei "$forbidden" "$work/ldd.txt"; then
   echo "test-install: the consumer links an authoring or tool library (above)" >&2
   exit 1
 fi
 grep -q "install-runtime/lib/libcoif_online.so" "$work/ldd.txt" || { echo "test-install: not the installed shared runtime" >&2; cat "$work/ldd.txt"; exit 1; }
 build/release/coif bake @default -o "$work/hair.coif"
-"$work/build/coif_consumer" "$work/hair.coif" "$work/hair.ppm"
+"$work/build/coif_example_host" "$work/hair.coif" "$work/hair.ppm"
 
 echo "test-install: the full install"
 rm -rf build/install-full
