@@ -32,7 +32,9 @@ enum class DepthTest : int {
 struct FrameTarget {
     glm::ivec4 viewport{0, 0, 1, 1};  // x, y, width, height in pixels (GL's, y up)
     // Blend the hair premultiplied "over" what the framebuffer holds (alpha = coverage), clearing nothing; false:
-    // replace the viewport's pixels with the hair over ShellSettings::background (coif render's images).
+    // replace the viewport's pixels with the hair over ShellSettings::background (coif render's images). This is the
+    // exact compositing's choice; the blended modes (sorted, unsorted) always blend over what is there, instance by
+    // instance.
     bool over = false;
     std::uint32_t scene_depth = 0;  // GL name of a 2D depth texture of the host's scene (texel = framebuffer pixel), or 0
     DepthTest depth_test = DepthTest::none;

@@ -4,11 +4,20 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <optional>
 #include <vector>
 
+#include "models/core/error.h"
 #include "models/core/parallel.h"
 #include "models/core/units.h"
 #include "shaders/lighting.h"
+
+#ifndef COIF_LIGHTING_TABLES_GENERATOR
+namespace coif::embedded {  // the tables computed at build time (shaders/CMakeLists.txt)
+std::optional<std::span<const unsigned char>> lighting_tables_data(std::string_view path);
+}
+#endif
 
 namespace coif::shading {
 
@@ -206,8 +215,52 @@ LightingTables build_lighting_tables() {
     return t;
 }
 
+namespace {
+
+std::array<LutImage*, 6> images_of(LightingTables& t) { return {&t.ck_lo, &t.ck_hi, &t.h_tt, &t.h_trt, &t.half_mass, &t.fresnel_fit}; }
+
+}  // namespace
+
+std::vector<std::byte> lighting_tables_bytes(const LightingTables& tables) {
+    LightingTables t = tables;
+    std::vector<std::byte> out;
+    for (const LutImage* image : images_of(t)) {
+        const std::uint32_t size[2] = {static_cast<std::uint32_t>(image->width), static_cast<std::uint32_t>(image->height)};
+        const auto* s = reinterpret_cast<const std::byte*>(size);
+        out.insert(out.end(), s, s + sizeof size);
+        const auto* p = reinterpret_cast<const std::byte*>(image->texels.data());
+        out.insert(out.end(), p, p + image->texels.size() * sizeof(glm::vec4));
+    }
+    return out;
+}
+
+LightingTables lighting_tables_from_bytes(std::span<const std::byte> bytes) {
+    LightingTables t;
+    std::size_t at = 0;
+    for (LutImage* image : images_of(t)) {
+        std::uint32_t size[2] = {};
+        if (bytes.size() - at < sizeof size) throw Error::parameter("lighting tables", "truncated");
+        std::memcpy(size, bytes.data() + at, sizeof size);
+        at += sizeof size;
+        if (size[0] > 4096 || size[1] > 4096) throw Error::parameter("lighting tables", "absurd table size");
+        *image = LutImage(static_cast<int>(size[0]), static_cast<int>(size[1]));
+        const std::size_t n = image->texels.size() * sizeof(glm::vec4);
+        if (bytes.size() - at < n) throw Error::parameter("lighting tables", "truncated");
+        std::memcpy(image->texels.data(), bytes.data() + at, n);
+        at += n;
+    }
+    if (at != bytes.size()) throw Error::parameter("lighting tables", "unexpected bytes after the last table");
+    return t;
+}
+
 const LightingTables& global_lighting_tables() {
-    static const LightingTables tables = build_lighting_tables();
+    static const LightingTables tables = [] {
+#ifndef COIF_LIGHTING_TABLES_GENERATOR
+        if (const auto bytes = embedded::lighting_tables_data("lighting_tables.bin"))
+            return lighting_tables_from_bytes(std::as_bytes(*bytes));
+#endif
+        return build_lighting_tables();
+    }();
     return tables;
 }
 

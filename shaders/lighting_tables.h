@@ -4,6 +4,10 @@
 //   global (parameter-free, once per process): 𝒞_k (000 eq. 14), H_k^TT, H_k^TRT (eq. 19, 23), the
 //   half-circle mass of circular Gaussians (eq. 28) and the exact-Fresnel polynomial fit;
 //   per hair-parameter set: the dual-scattering 1D tables Ā_b, ∫Δ̄_b, ∫σ̄_b (000 §5, eq. 29-31).
+#include <cstddef>
+#include <span>
+#include <vector>
+
 #include "shaders/glsl_prelude.h"
 #include "shaders/lut.h"
 
@@ -22,8 +26,13 @@ struct LightingTables {
 
 LightingTables build_lighting_tables();
 
-// Built on first use (thread-safe), then shared.
+// Built on first use (thread-safe), then shared: read from the copy computed at build time and embedded in the
+// library (shaders/tables/make_lighting_tables.cpp), which is build_lighting_tables()'s result bit for bit.
 const LightingTables& global_lighting_tables();
+// The tables as bytes (per table in the order ck_lo, ck_hi, h_tt, h_trt, half_mass, fresnel_fit: u32 width, u32
+// height, width × height RGBA floats; little-endian), and back (throws coif::Error on a size that does not match).
+std::vector<std::byte> lighting_tables_bytes(const LightingTables& tables);
+LightingTables lighting_tables_from_bytes(std::span<const std::byte> bytes);
 
 struct MultipleScatteringTables {
     LutImage ab, sat_delta, sat_sigma, af;

@@ -333,3 +333,23 @@ TEST(LightingCli, PlotWritesFigureAndRefusesBadParameters) {
 }
 
 }  // namespace
+
+namespace coif::shading {
+namespace {
+
+// The tables every process reads are the ones computed at build time and embedded (shaders/CMakeLists.txt): they
+// must be today's build_lighting_tables() bit for bit, or a change to the tables' code would go unseen.
+TEST(LightingTables, EmbeddedTablesAreAFreshComputationBitForBit) {
+    const LightingTables fresh = build_lighting_tables();
+    const LightingTables& used = global_lighting_tables();
+    EXPECT_EQ(lighting_tables_bytes(used), lighting_tables_bytes(fresh));
+    EXPECT_EQ(used.build_seconds, 0.0) << "computed at run time: the embedded tables were not found";
+    std::printf("lighting tables: %.0f ms to compute, read from the library instead\n", 1e3 * fresh.build_seconds);
+    // The byte form round-trips and refuses a truncated copy.
+    const std::vector<std::byte> bytes = lighting_tables_bytes(fresh);
+    EXPECT_EQ(lighting_tables_bytes(lighting_tables_from_bytes(bytes)), bytes);
+    EXPECT_THROW(lighting_tables_from_bytes(std::span<const std::byte>(bytes).first(bytes.size() - 1)), Error);
+}
+
+}  // namespace
+}  // namespace coif::shading
