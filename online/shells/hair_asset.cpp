@@ -155,21 +155,13 @@ bool finite(const glm::vec<N, float>& v) {
 }
 bool finite(const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); }
 
-glm::vec3 vec3_of(const nlohmann::json& j, const std::string& place, const Reader& r) {
-    if (!j.is_array() || j.size() != 3) r.fail(place, "expected 3 numbers");
-    glm::vec3 v;
-    for (int i = 0; i < 3; ++i) {
-        if (!j[i].is_number()) r.fail(place, "expected 3 numbers");
-        v[i] = j[i].get<float>();
-    }
-    if (!finite(v)) r.fail(place, "not finite");
-    return v;
-}
-glm::vec4 vec4_of(const nlohmann::json& j, const std::string& place, const Reader& r) {
-    if (!j.is_array() || j.size() != 4) r.fail(place, "expected 4 numbers");
-    glm::vec4 v;
-    for (int i = 0; i < 4; ++i) {
-        if (!j[i].is_number()) r.fail(place, "expected 4 numbers");
+template <int N>
+glm::vec<N, float> vec_of(const nlohmann::json& j, const std::string& place, const Reader& r) {
+    const std::string expected = "expected " + std::to_string(N) + " numbers";
+    if (!j.is_array() || j.size() != N) r.fail(place, expected);
+    glm::vec<N, float> v;
+    for (int i = 0; i < N; ++i) {
+        if (!j[i].is_number()) r.fail(place, expected);
         v[i] = j[i].get<float>();
     }
     if (!finite(v)) r.fail(place, "not finite");
@@ -292,8 +284,8 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     const auto box = [&](const char* key, glm::vec3& lo, glm::vec3& hi) {
         if (!meta.contains(key) || !meta[key].is_array() || meta[key].size() != 2)
             r.fail(std::string("META/") + key, "expected [min, max]");
-        lo = vec3_of(meta[key][0], std::string("META/") + key + "/0", r);
-        hi = vec3_of(meta[key][1], std::string("META/") + key + "/1", r);
+        lo = vec_of<3>(meta[key][0], std::string("META/") + key + "/0", r);
+        hi = vec_of<3>(meta[key][1], std::string("META/") + key + "/1", r);
     };
     box("bounds", p.bounds_min, p.bounds_max);
     box("frame", c.frame_min, c.frame_max);
@@ -314,8 +306,8 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
         if (!aj.contains("lo") || !aj["lo"].is_array() || aj["lo"].size() != kAtlasParts || !aj.contains("scale") ||
             !aj["scale"].is_array() || aj["scale"].size() != kAtlasParts)
             r.fail("META/atlas", "lo and scale must be 3 × 4 numbers");
-        a.lo[part] = vec4_of(aj["lo"][part], "META/atlas/lo", r);
-        a.scale[part] = vec4_of(aj["scale"][part], "META/atlas/scale", r);
+        a.lo[part] = vec_of<4>(aj["lo"][part], "META/atlas/lo", r);
+        a.scale[part] = vec_of<4>(aj["scale"][part], "META/atlas/scale", r);
         if (!glm::all(glm::greaterThan(a.scale[part], glm::vec4(0.0f)))) r.fail("META/atlas/scale", "must be > 0");
     }
     if (a.width != a.tiles_per_row * (a.hrir_length + 2)) r.fail("META/atlas", "width does not match tiles_per_row × (hrir_length + 2)");
@@ -329,11 +321,11 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
         if (d < 1 || d > 512) r.fail("META/grid/dims", "each must be 1..512");
         g.dims[i] = static_cast<int>(d);
     }
-    g.origin = vec3_of(gj.value("origin", nlohmann::json()), "META/grid/origin", r);
+    g.origin = vec_of<3>(gj.value("origin", nlohmann::json()), "META/grid/origin", r);
     g.voxel = float_of(gj, "voxel", "META/grid", r);
     if (!(g.voxel > 0)) r.fail("META/grid/voxel", "must be > 0");
-    g.strands_min = vec3_of(gj.value("strands_min", nlohmann::json()), "META/grid/strands_min", r);
-    g.strands_max = vec3_of(gj.value("strands_max", nlohmann::json()), "META/grid/strands_max", r);
+    g.strands_min = vec_of<3>(gj.value("strands_min", nlohmann::json()), "META/grid/strands_min", r);
+    g.strands_max = vec_of<3>(gj.value("strands_max", nlohmann::json()), "META/grid/strands_max", r);
     if (!meta.contains("params")) r.fail("META/params", "missing");
     try {
         c.defaults = gl::shell_settings_from_json(meta["params"], file.string());

@@ -42,6 +42,17 @@ inline HairStyle one_cluster_style() {
     return parse_style(text, "<test style>");
 }
 
+// The one-cluster style and an instance of it, turned 90° about y and moved 5 cm along x.
+inline HairStyle prototype_and_instance() {
+    const char* text = R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}},
+                   {"name": "c1", "instance_of": "c0",
+                    "transform": {"scale": 1, "rotation": [0.70710678, 0, 0.70710678, 0], "translation": [5, 0, 0]}}]})";
+    return parse_style(text, "<test style>");
+}
+
 inline std::vector<SrbfLight> two_lights() {
     SrbfLight a, b;
     a.L = glm::vec3(2.0f, 1.8f, 1.5f);

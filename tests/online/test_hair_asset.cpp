@@ -19,20 +19,11 @@ namespace coif {
 namespace {
 
 using test::one_cluster_style;
+using test::prototype_and_instance;
 using test::test_db;
 using test::test_index;
 using test::two_lights;
 
-// Two clusters, the second an instance of the first turned and moved (instancing must survive the file).
-HairStyle two_cluster_style() {
-    const char* text = R"({"format": "coif-style", "version": 1,
-      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
-      "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [0.7],
-                    "theta_deg": [0, 40], "density": {"kind": "uniform", "value": 0.5}},
-                   {"name": "c1", "trajectory": [[3, 0, 0], [3.5, -4, 1], [4, -9, 2]], "a": [1.2], "b": [0.8],
-                    "theta_deg": [10], "density": {"kind": "uniform", "value": 0.3}}]})";
-    return parse_style(text, "<two clusters>");
-}
 
 Image draw(CookedShells cooked) {
     gl::ShellRenderer r(std::move(cooked));
@@ -44,7 +35,7 @@ Image draw(CookedShells cooked) {
 }
 
 const CookedShells& cooked() {
-    static const CookedShells c = cook_shells(two_cluster_style(), test_index(), glm::mat3(1.0f));
+    static const CookedShells c = cook_shells(prototype_and_instance(), test_index(), glm::mat3(1.0f));
     return c;
 }
 
@@ -89,7 +80,7 @@ TEST(HairAsset, HoldsOnlyTheRecordsItsSectorsUseAndDrawsAsTheWholeDatabase) {
     // The same hair with every record of the database in the atlas and the database's own ids.
     CookedShells whole = c;
     const DatabaseAtlasStats stats = database_atlas_stats(test_db());
-    whole.shells = prepare_shells(two_cluster_style(), test_index(), stats.mean_alpha, glm::mat3(1.0f));
+    whole.shells = prepare_shells(prototype_and_instance(), test_index(), stats.mean_alpha, glm::mat3(1.0f));
     whole.shells.samples = c.shells.samples;  // with the measured tilts
     whole.atlas = pack_record_atlas(test_db());
     EXPECT_EQ(whole.atlas.re_norm, c.atlas.re_norm);

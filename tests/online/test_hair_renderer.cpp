@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -68,13 +69,23 @@ FrameInputs inputs(const Camera& cam, const HostFrame& host, const std::vector<S
 
 bool hair(const glm::vec4& p) { return p != kClear; }
 
-TEST(HairRenderer, BlendsOverTheHostFrameAsTheStandaloneImageOverItsBackground) {
-    auto context = gl::Context::headless();
+// What every test starts from: a context, the renderer of the one-cluster hair, a camera on it, two lights and a
+// host frame cleared to its colour and to the far depth.
+struct Scene {
+    std::unique_ptr<gl::Context> context = gl::Context::headless();
     HairRenderer hr{CookedShells(cooked())};
-    const Camera cam = camera_of(hr);
-    const std::vector<SrbfLight> lights = two_lights();
+    Camera cam = camera_of(hr);
+    std::vector<SrbfLight> lights = two_lights();
     HostFrame host;
-    host.clear(1.0f, 1.0f);
+    Scene() { host.clear(1.0f, 1.0f); }
+};
+
+TEST(HairRenderer, BlendsOverTheHostFrameAsTheStandaloneImageOverItsBackground) {
+    Scene scene;
+    HairRenderer& hr = scene.hr;
+    const Camera& cam = scene.cam;
+    const std::vector<SrbfLight>& lights = scene.lights;
+    HostFrame& host = scene.host;
     hr.draw(inputs(cam, host, lights));
     const std::vector<glm::vec4> got = host.read();
     // The same hair drawn alone over a background of the host's clear colour (render(): an RGBA16F target).
@@ -104,16 +115,15 @@ TEST(HairRenderer, BlendsOverTheHostFrameAsTheStandaloneImageOverItsBackground) 
 }
 
 TEST(HairRenderer, SceneDepthHidesTheHairBehindItInEitherConvention) {
-    auto context = gl::Context::headless();
-    HairRenderer hr{CookedShells(cooked())};
-    const Camera cam = camera_of(hr);
-    const std::vector<SrbfLight> lights = two_lights();
+    Scene scene;
+    HairRenderer& hr = scene.hr;
+    const Camera& cam = scene.cam;
+    const std::vector<SrbfLight>& lights = scene.lights;
+    HostFrame& host = scene.host;
     // A wall over the left half, between the eye and the hair: its window depth, standard convention.
     const glm::vec3 forward = glm::normalize(cam.target - cam.eye);
     const glm::vec4 clip = cam.projection() * cam.view() * glm::vec4(cam.eye + 0.3f * glm::distance(cam.eye, cam.target) * forward, 1.0f);
     const float wall = 0.5f * (clip.z / clip.w) + 0.5f;
-    HostFrame host;
-    host.clear(1.0f, 1.0f);
     hr.draw(inputs(cam, host, lights));
     const std::vector<glm::vec4> open = host.read();
 
@@ -152,13 +162,13 @@ TEST(HairRenderer, SceneDepthHidesTheHairBehindItInEitherConvention) {
 }
 
 TEST(HairRenderer, DrawsEveryInstanceAndRefusesTransformsThatAreNotRigid) {
-    auto context = gl::Context::headless();
-    HairRenderer hr{CookedShells(cooked())};
+    Scene scene;
+    HairRenderer& hr = scene.hr;
     const glm::vec3 size = hr.bounds_max() - hr.bounds_min();
-    Camera cam = camera_of(hr);
+    Camera cam = scene.cam;
     cam.fov_y *= 2.0f;  // wider, so that a second copy beside the first fits in the view
-    const std::vector<SrbfLight> lights = two_lights();
-    HostFrame host;
+    const std::vector<SrbfLight>& lights = scene.lights;
+    HostFrame& host = scene.host;
     const auto count = [&](std::vector<glm::mat4> instances) {
         host.clear(1.0f, 1.0f);
         FrameInputs f = inputs(cam, host, lights);
@@ -190,12 +200,11 @@ TEST(HairRenderer, DrawsEveryInstanceAndRefusesTransformsThatAreNotRigid) {
 }
 
 TEST(HairRenderer, PutsBackTheHostsGlStateEvenWhenItThrows) {
-    auto context = gl::Context::headless();
-    HairRenderer hr{CookedShells(cooked())};
-    const Camera cam = camera_of(hr);
-    const std::vector<SrbfLight> lights = two_lights();
-    HostFrame host;
-    host.clear(1.0f, 1.0f);
+    Scene scene;
+    HairRenderer& hr = scene.hr;
+    const Camera& cam = scene.cam;
+    const std::vector<SrbfLight>& lights = scene.lights;
+    HostFrame& host = scene.host;
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     // A host's state, set to values none of the passes use.
@@ -260,15 +269,12 @@ TEST(HairRenderer, PutsBackTheHostsGlStateEvenWhenItThrows) {
 }
 
 TEST(HairRenderer, MessagesGoToTheHostsLogSink) {
-    auto context = gl::Context::headless();
     std::vector<std::string> messages;
     const LogSink previous = set_log_sink([&](LogLevel, std::string_view m) { messages.emplace_back(m); });
     {
-        HairRenderer hr{CookedShells(cooked())};
-        HostFrame host;
-        host.clear(1.0f, 1.0f);
-        const std::vector<SrbfLight> lights = two_lights();
-        FrameInputs f = inputs(camera_of(hr), host, lights);
+        Scene scene;
+        HairRenderer& hr = scene.hr;
+        FrameInputs f = inputs(scene.cam, scene.host, scene.lights);
         gl::ShellSettings s = hr.defaults();
         s.hair.fibre.sigma_a = glm::vec3(0.3f, 0.5f, 0.9f);  // other tables: the renderer says it rebuilds them
         f.settings = &s;
