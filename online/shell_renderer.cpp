@@ -41,6 +41,9 @@ struct ShellRenderer::Impl {
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
+    // render()'s frames after its first: the same eye, lights and settings, so the lighting sums of the first frame
+    // are reused as they are (exact: the pass is a function of those alone; the jitter moves only the image).
+    bool reuse_lighting = false;
     std::vector<InstanceLights> instances;  // draw_frame's, by instance index
 
     void swap(InstanceLights& l) {
@@ -196,7 +199,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const Shel
     if (s.timed) glFinish();
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
-    if (!floor_only) m.lighting.run(gpu, s, view.eye);
+    if (!floor_only && !m.reuse_lighting) m.lighting.run(gpu, s, view.eye);
     if (s.timed) {
         glFinish();
         timings_.lighting_wall_ms = floor_only ? 0.0 : wall_ms_since(t_pass);
@@ -256,8 +259,15 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     // again, with the storage grown to what the frame counted. One that still overflows has met the GPU's
     // storage-block limit, and that is an error: render() never returns an image with holes (draw(), the
     // real-time path, warns and grows instead, so that the next frame is whole).
+    struct Reuse {  // every draw after the first reuses its lighting; none after render() returns or throws
+        bool& flag;
+        ~Reuse() { flag = false; }
+    } reuse{impl_->reuse_lighting};
+    double lighting_ms = 0;  // the render's lighting pass (its first frame)
     const auto draw_whole = [&] {
         draw(camera, settings);
+        lighting_ms += timings_.lighting_wall_ms;
+        reuse.flag = true;
         const FragmentLists* lists = impl_->shells_pass.lists();
         if (settings.compositing != Compositing::exact || !lists || lists->stats().dropped == 0) return;
         draw(camera, settings);
@@ -275,6 +285,7 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
                             settings.compositing == Compositing::exact ? 1 : settings.samples);
         target.bind();
         draw_whole();
+        timings_.lighting_wall_ms = lighting_ms;
         return target.read_back();
     }
     // The exact compositing keeps one fragment list per pixel, so it antialiases by supersampling: f × f
@@ -296,6 +307,7 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
         }
     impl_->jitter = glm::vec2(0.0f);
     timings_.shadows_ms = shadows_ms;
+    timings_.lighting_wall_ms = lighting_ms;
     const float norm = 1.0f / static_cast<float>(f * f);
     for (float& v : sum.pixels) v *= norm;
     return sum;

@@ -113,7 +113,8 @@ public:
                     const ShellSettings& settings, const FrameTarget& target, std::span<const glm::mat4> instances = {});
     // Renders into an offscreen target of the camera's size and returns the linear RGBA image; the exact
     // compositing with samples > 1 averages f² frames, f = round(√samples), shifted to the pixel centres of
-    // an f-times finer grid (supersampling with a box filter, at one frame's memory). An exact frame that
+    // an f-times finer grid (supersampling with a box filter, at one frame's memory). The lighting pass runs for the
+    // first frame only: the others have the same eye, lights and settings (timings().lighting_wall_ms is that pass). An exact frame that
     // overflows its fragment storage is drawn again with the storage grown; throws coif::Error::parameter
     // if it still overflows (the GPU's storage-block limit): never an image with holes.
     Image render(const Camera& camera, const ShellSettings& settings);

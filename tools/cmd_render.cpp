@@ -248,10 +248,10 @@ void add_render(CLI::App& root) {
         const coif::gl::ShellTimings& t = renderer.timings();
         std::fprintf(stderr,
                      "rendered %s (%zu clusters, %zu sectors, %zu triangles) with %zu lights at %dx%d on %s in %.1f ms "
-                     "wall-clock (last frame: lighting %.1f, shells %.1f; preparation %.2f s) -> %s\n",
+                     "wall-clock (lighting %.1f, once for every frame of the image; shells %.1f, the last frame; upload %.2f s) -> %s\n",
                      o->scene.style.c_str(), st.clusters, st.sectors, st.triangles, scene.lights.size(), camera.width,
                      camera.height, scene.context->renderer().c_str(), render_ms, t.lighting_wall_ms, t.shells_wall_ms,
-                     st.prepare_seconds, o->output.c_str());
+                     st.upload_seconds, o->output.c_str());
         std::fprintf(stderr,
                      "loading: %s and lights read in %.1f ms; scene %.1f ms (%s, GL context, upload %.1f ms); GL programs "
                      "compiled in %.1f ms\n",

@@ -414,6 +414,26 @@ TEST(ShellRenderer, RenderingIsDeterministic) {
     EXPECT_EQ(a.pixels, b.pixels);
 }
 
+// render() lights its first frame only and reuses those sums for the shifted frames after it (the same eye, lights
+// and settings). Nothing of that may leak: a render from another view right after it is bit for bit the render of a
+// renderer that never drew before.
+TEST(ShellRenderer, RenderLightsOnceAndNothingLeaksIntoTheNextView) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer used(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    gl::ShellRenderer fresh(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    used.set_lights(two_lights());
+    fresh.set_lights(two_lights());
+    gl::ShellSettings s;
+    s.samples = 4;
+    s.timed = true;
+    const Image aa = used.render(front_camera(used), s);
+    ASSERT_FALSE(aa.empty());
+    EXPECT_GT(used.timings().lighting_wall_ms, 0.0) << "the render's one lighting pass is reported";
+    const Camera other = Camera::orbit(used.bounds_min(), used.bounds_max(), 2.0f, -0.3f, 96, 64);
+    s.samples = 1;
+    EXPECT_EQ(used.render(other, s).pixels, fresh.render(other, s).pixels);
+}
+
 TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
     auto context = gl::Context::headless();
     gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
