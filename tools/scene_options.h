@@ -10,9 +10,9 @@
 #include "models/absorption_map.h"
 #include "models/core/camera.h"
 #include "models/hair_style.h"
-#include "online/shells/hair_asset.h"
 #include "models/strands.h"
 #include "offline/srbf_lights.h"
+#include "online/shells/hair_asset.h"
 #include "tools/cli.h"
 
 namespace coif::gl {

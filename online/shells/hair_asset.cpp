@@ -73,7 +73,7 @@ nlohmann::json meta_json(const CookedShells& c) {
     j["style"] = c.name;
     j["database"] = c.database;
     j["database_records"] = c.database_records;
-    j["coif_version"] = "0.1.0";
+    j["coif_version"] = COIF_VERSION;
     j["layout"] = {{"core_radius", L.core_radius}, {"layers", L.layers}, {"s_t", L.s_t}, {"s_u", L.s_u},
                    {"grid_s", L.grid_s}, {"grid_r", L.grid_r}, {"mesh_t", L.mesh_t}, {"mesh_u", L.mesh_u},
                    {"gaussian_width", L.gaussian_width}};
