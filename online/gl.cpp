@@ -1,9 +1,8 @@
 #include "online/gl.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
-
-#include <algorithm>
 #include <cstdio>
 #include <initializer_list>
 #include <set>
@@ -190,16 +189,10 @@ std::atomic<double> compile_seconds{0.0};
 double program_compile_seconds() { return compile_seconds.load(); }
 
 Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
-    const auto start = std::chrono::steady_clock::now();
-    struct Count {
-        std::chrono::steady_clock::time_point start;
-        ~Count() {
-            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            double old = compile_seconds.load();
-            while (!compile_seconds.compare_exchange_weak(old, old + s)) {
-            }
-        }
-    } count{start};
+    struct Count {  // counts the time spent here, also when compiling or linking throws
+        std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+        ~Count() { compile_seconds.fetch_add(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()); }
+    } count;
     const GLuint program = glCreateProgram();
     handle_ = ProgramHandle(program);
     std::vector<GLuint> shaders;

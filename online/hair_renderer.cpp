@@ -89,7 +89,7 @@ void HairRenderer::draw(const FrameInputs& f) {
     target.viewport = f.viewport;
     target.over = true;
     target.scene_depth = f.depth_texture;
-    target.depth_test = f.depth_texture ? f.depth_test : DepthTest::none;
+    target.depth_test = f.depth_test;  // unused without a depth texture (ShellsPass::draw)
     gl::ShellSettings s = f.settings ? *f.settings : defaults_;
     s.samples = 1;  // one frame per draw (the host antialiases, e.g. with its TAA and a jittered projection)
     s.timed = false;

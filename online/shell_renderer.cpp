@@ -156,11 +156,7 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
             il.lighting = make_texture_2d(GL_RGBA32F, m.gpu->lighting_rows, static_cast<int>(m.gpu->clusters * kLightingTexels),
                                           Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
         m.swap(il);
-        const bool same = il.lights.size() == turned.size() &&
-                          std::equal(turned.begin(), turned.end(), il.lights.begin(), [](const SrbfLight& a, const SrbfLight& b) {
-                              return a.L == b.L && a.omega == b.omega && a.lambda == b.lambda;
-                          });
-        if (!same || m.gpu->light_count != static_cast<int>(turned.size())) {
+        if (il.lights != turned) {
             m.gpu->set_lights(turned);
             il.lights = turned;
             m.shadows_valid = false;

@@ -217,14 +217,17 @@ LightingTables build_lighting_tables() {
 
 namespace {
 
-std::array<LutImage*, 6> images_of(LightingTables& t) { return {&t.ck_lo, &t.ck_hi, &t.h_tt, &t.h_trt, &t.half_mass, &t.fresnel_fit}; }
+// The tables in their byte order (lighting_tables_bytes), for reading (T = const LightingTables) or filling.
+template <class T>
+auto images_of(T& t) {
+    return std::array{&t.ck_lo, &t.ck_hi, &t.h_tt, &t.h_trt, &t.half_mass, &t.fresnel_fit};
+}
 
 }  // namespace
 
 std::vector<std::byte> lighting_tables_bytes(const LightingTables& tables) {
-    LightingTables t = tables;
     std::vector<std::byte> out;
-    for (const LutImage* image : images_of(t)) {
+    for (const LutImage* image : images_of(tables)) {
         const std::uint32_t size[2] = {static_cast<std::uint32_t>(image->width), static_cast<std::uint32_t>(image->height)};
         const auto* s = reinterpret_cast<const std::byte*>(size);
         out.insert(out.end(), s, s + sizeof size);

@@ -11,6 +11,8 @@ struct SrbfLight {
     glm::vec3 L{0.0f};                 // RGB coefficient L_j, linear radiance
     glm::vec3 omega{0.0f, 1.0f, 0.0f}; // centre ω_j: unit world direction towards the light (y up)
     float lambda = 1.0f;               // bandwidth λ_j (radians-like; NOT a standard deviation)
+
+    bool operator==(const SrbfLight&) const = default;
 };
 
 }  // namespace coif

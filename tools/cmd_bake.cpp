@@ -31,8 +31,8 @@ void add_bake(CLI::App& root) {
         "GPU's record atlas (with the whole database's quantisation ranges, so the asset draws bit-identically to the\n"
         "style), voxelizes the style's strands for the shadow grid, and writes all of it with the parameters to start\n"
         "from (--params) as one versioned, checksummed file. `coif render --style hair.coif` draws it; the runtime\n"
-        "library (coif::runtime, coif/coif.h) loads it in a few milliseconds. The file format and its compatibility rule\n"
-        "are in online/shells/hair_asset.h.");
+        "library (coif::runtime, coif/coif.h) loads it without the database (docs/renderer.md has the load times). The file\n"
+        "format and its compatibility rule are in online/shells/hair_asset.h.");
     cmd->add_option("style", o->style, "Cluster hairstyle (JSON), or @default for the embedded one")->required();
     cmd->add_option("--db", o->db, "HRIR database; default: the cached default database (built on first use)");
     cmd->add_option("--params", o->params, "Parameters JSON the asset starts from (see coif render --help); default: the library's");

@@ -28,7 +28,8 @@ std::vector<AtlasTexels> record_texels(const HrirDatabase& db, std::size_t rec) 
                     const int value = atlas_value_index(part, ch);
                     float f = 0.0f;
                     if (value == 0) f = r[g.alpha_offset(v) + x];
-                    else if (value <= 9 && value - 1 < g.coefficients()) f = r[g.re_offset(v, value - 1) + x];
+                    else if (value <= kAtlasReCoefficients && value - 1 < g.coefficients())
+                        f = r[g.re_offset(v, value - 1) + x];
                     t[part * 4 + ch] = f;
                 }
         }

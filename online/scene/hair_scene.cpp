@@ -55,7 +55,6 @@ HairScene::HairScene(HairSceneDesc desc)
     ShellView v;
     if (desc.cooked) {
         database_label = desc.cooked->database;
-        defaults = desc.cooked->defaults;
         context = Context::headless();
         v = make_view(std::move(*desc.cooked), nullptr, lights, desc.absorption, desc.framing);
     } else {

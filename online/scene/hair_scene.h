@@ -85,7 +85,6 @@ struct HairScene {
     std::optional<HrirDatabase> db;   // none for an asset
     std::optional<SatfIndex> satf;
     std::string database_label;       // the database drawn with: its path, or for an asset the one it was baked against
-    ShellSettings defaults;           // the settings to start from: an asset's baked parameters, else the library's
     std::unique_ptr<Context> context;
     std::unique_ptr<ShellRenderer> renderer;
     Camera camera;

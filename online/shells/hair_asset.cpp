@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <numeric>
 #include <nlohmann/json.hpp>
 #include <type_traits>
 
@@ -23,7 +24,7 @@ namespace {
 
 constexpr char kMagic[8] = {'C', 'O', 'I', 'F', 'H', 'A', 'I', 'R'};
 constexpr std::size_t kHeader = 32;
-constexpr std::uint32_t kSections = 16;
+constexpr std::uint32_t kSections = 15;
 // Bounds that no real asset comes near and that keep a hostile one from asking for absurd memory.
 constexpr std::uint64_t kMaxElements = 1ull << 31;
 constexpr int kMaxLayoutCount = 4096;
@@ -78,7 +79,6 @@ nlohmann::json meta_json(const CookedShells& c) {
                    {"grid_s", L.grid_s}, {"grid_r", L.grid_r}, {"mesh_t", L.mesh_t}, {"mesh_u", L.mesh_u},
                    {"gaussian_width", L.gaussian_width}};
     j["lighting_rows"] = p.lighting_rows;
-    j["triangles"] = p.triangles;
     j["bounds"] = {vec_json(p.bounds_min), vec_json(p.bounds_max)};
     j["frame"] = {vec_json(c.frame_min), vec_json(c.frame_max)};
     j["tangent_spread"] = c.tangent_spread;
@@ -209,7 +209,6 @@ std::vector<std::byte> hair_asset_bytes(const CookedShells& c) {
     std::vector<std::uint32_t> cluster_proto(p.cluster_proto.begin(), p.cluster_proto.end());
     w.section("CPRO", std::span<const std::uint32_t>(cluster_proto));
     w.section("INST", std::span<const ShellInstance>(p.instances));
-    w.section("CIDS", std::span<const std::uint32_t>(p.cluster_ids));
     w.section("CCEN", std::span<const glm::vec3>(p.cluster_centre));
     w.section("SAMP", std::span<const LightingSample>(p.samples));
     w.section("ATLS", std::span<const std::uint8_t>(c.atlas.texels));
@@ -280,7 +279,6 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     if (!(L.core_radius >= 0 && L.core_radius < 1)) r.fail("META/layout/core_radius", "must be in [0, 1)");
     if (L.sector_count() > kMaxElements) r.fail("META/layout", "absurd sector count");
     p.lighting_rows = int_in(meta, "lighting_rows", "META", 2, 1 << 16, r);
-    p.triangles = field<std::size_t>(meta, "triangles", "META", r);
     const auto box = [&](const char* key, glm::vec3& lo, glm::vec3& hi) {
         if (!meta.contains(key) || !meta[key].is_array() || meta[key].size() != 2)
             r.fail(std::string("META/") + key, "expected [min, max]");
@@ -341,7 +339,6 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     p.sectors = r.section<ShellSector>("SECT");
     const std::vector<std::uint32_t> cluster_proto = r.section<std::uint32_t>("CPRO");
     p.instances = r.section<ShellInstance>("INST");
-    p.cluster_ids = r.section<std::uint32_t>("CIDS");
     p.cluster_centre = r.section<glm::vec3>("CCEN");
     p.samples = r.section<LightingSample>("SAMP");
     a.texels = r.section<std::uint8_t>("ATLS");
@@ -368,6 +365,7 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
                 if (p.indices[m.first + static_cast<std::uint32_t>(i)] >= static_cast<std::uint32_t>(m.vertex_count))
                     r.fail(place, "an index outside its mesh's vertices");
             p.meshes[q].push_back(m);
+            p.triangles += static_cast<std::size_t>(m.count) / 3;
         }
     }
     if (p.sectors.size() != P * per_proto) r.fail("SECT", "expected prototypes × the layout's sectors");
@@ -387,11 +385,12 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     for (const std::uint32_t v : cluster_proto)
         if (v >= P) r.fail("CPRO", "a prototype index out of range");
     p.cluster_proto.assign(cluster_proto.begin(), cluster_proto.end());
-    if (p.instances.size() != C || p.cluster_ids.size() != C || p.cluster_centre.size() != C)
-        r.fail("INST", "one instance, id and centre per cluster expected");
+    p.cluster_ids.resize(C);
+    std::iota(p.cluster_ids.begin(), p.cluster_ids.end(), 0u);
+    if (p.instances.size() != C || p.cluster_centre.size() != C) r.fail("INST", "one instance and centre per cluster expected");
     for (std::size_t i = 0; i < C; ++i) {
         const ShellInstance& in = p.instances[i];
-        if (!finite(in.model) || in.info.x != p.cluster_proto[i] * per_proto || in.info.y != i || p.cluster_ids[i] != i ||
+        if (!finite(in.model) || in.info.x != p.cluster_proto[i] * per_proto || in.info.y != i ||
             !finite(p.cluster_centre[i]))
             r.fail("INST " + std::to_string(i), "does not match its cluster");
     }

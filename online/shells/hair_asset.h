@@ -7,7 +7,7 @@
 //
 //   byte 0   8  magic "COIFHAIR"
 //   byte 8   u32 format version (kHairAssetVersion)
-//   byte 12  u32 section count (16 in version 1)
+//   byte 12  u32 section count (15 in version 1)
 //   byte 16  u64 file size in bytes
 //   byte 24  u64 XXH3-64 checksum of bytes 32 … end (models/core/checksum.h)
 //   byte 32  the sections, in this order, each a u32 tag (4 ASCII characters), u32 element size in bytes, u64
@@ -15,7 +15,7 @@
 //     META  1 byte   JSON object, UTF-8: "format": "coif-hair-asset"; "style" (its name); "database" (the HRIR
 //                    database cooked against, for messages) and "database_records" (its record count);
 //                    "coif_version"; "layout" (models/generalized_disk.h DiskLayout: core_radius, layers, s_t, s_u,
-//                    grid_s, grid_r, mesh_t, mesh_u, gaussian_width); "lighting_rows"; "triangles"; "bounds" and
+//                    grid_s, grid_r, mesh_t, mesh_u, gaussian_width); "lighting_rows"; "bounds" and
 //                    "frame" ([min xyz, max xyz]: the placed outer layers, and the box a camera frames, that of
 //                    the style's strands turned y-up); "tangent_spread" (RMS fibre tilt, radians);
 //                    "auto_fiber_radius"; "shadow_strands"; "atlas" (width, height, tiles_per_row, views,
@@ -29,7 +29,6 @@
 //     SECT 48        ShellSector: per prototype × layout.sector_count(): record ids (into the atlas), weights, shadow sums
 //     CPRO  4        u32 per cluster: its prototype
 //     INST 80        ShellInstance per cluster: model matrix, (first sector, cluster index, 0, 0)
-//     CIDS  4        u32 per cluster: its index (the per-instance attribute)
 //     CCEN 12        vec3 per cluster: the axis's centre, world
 //     SAMP 96        LightingSample per cluster × lighting_rows
 //     ATLS  1        the record atlas's RGBA8 texels, width × height × 4, row 0 first
@@ -37,6 +36,9 @@
 //     MA0_  4        f32 per atlas record: mean re a0
 //     GDIA 16        vec4 per voxel: the shadow grid's (xx, yy, zz, xy), x fastest
 //     GOFF  8        vec2 per voxel: (xz, yz)
+//
+// What the sections imply is not stored: each cluster's index (the per-instance attribute 0, 1, 2, …) and the
+// triangle count are derived on reading.
 //
 // The atlas holds only the records the sectors use, quantised with the ranges of the whole database and with its
 // re_norm, so that an asset draws bit-identically to its style cooked live (both draw a CookedShells).

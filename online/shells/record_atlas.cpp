@@ -10,7 +10,7 @@ namespace glsl {
 #include "shaders/gl/record_atlas.glsl"
 }  // namespace glsl
 
-static_assert(kAtlasParts == glsl::ATLAS_PARTS);
+static_assert(kAtlasParts == glsl::ATLAS_PARTS && kAtlasReCoefficients == glsl::ATLAS_RE_COEFFICIENTS);
 
 namespace {
 

@@ -15,7 +15,8 @@
 
 namespace coif {
 
-inline constexpr int kAtlasParts = 3;  // shaders/gl/record_atlas.glsl ATLAS_PARTS
+inline constexpr int kAtlasParts = 3;            // shaders/gl/record_atlas.glsl ATLAS_PARTS
+inline constexpr int kAtlasReCoefficients = 9;   // ATLAS_RE_COEFFICIENTS: re's a0, a1, b1, …, a4, b4
 
 struct RecordAtlas {
     int width = 1, height = 1;       // texels
