@@ -118,8 +118,10 @@ void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfInd
     m.layout = style.layout;
     const DiskLayout& L = m.layout;
     m.prototypes.clear();
-    m.vertices.clear();
-    m.indices.clear();
+    std::vector<ShellVertex>& vertices = m.vertices.vector();
+    std::vector<std::uint32_t>& indices = m.indices.vector();
+    vertices.clear();
+    indices.clear();
     m.triangles = 0;
     m.cluster_proto.assign(style.clusters.size(), SIZE_MAX);
     std::vector<std::size_t> slot_of(style.clusters.size(), SIZE_MAX);
@@ -141,15 +143,15 @@ void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfInd
         for (int j = 0; j < L.layers; ++j) {
             const LayerMesh mesh = layer_mesh(shape, L, j);
             MeshRange range;
-            range.first = static_cast<std::uint32_t>(m.indices.size());
+            range.first = static_cast<std::uint32_t>(indices.size());
             range.count = static_cast<std::int32_t>(mesh.indices.size());
-            range.base_vertex = static_cast<std::int32_t>(m.vertices.size());
+            range.base_vertex = static_cast<std::int32_t>(vertices.size());
             range.vertex_count = static_cast<std::int32_t>(mesh.position.size());
             for (std::size_t v = 0; v < mesh.position.size(); ++v) {
                 const Frame f = shape.frame(mesh.texcoord[v].y);
-                m.vertices.push_back({mesh.position[v], mesh.tangent[v], mesh.normal[v], mesh.texcoord[v], glm::vec3(f.normal)});
+                vertices.push_back({mesh.position[v], mesh.tangent[v], mesh.normal[v], mesh.texcoord[v], glm::vec3(f.normal)});
             }
-            m.indices.insert(m.indices.end(), mesh.indices.begin(), mesh.indices.end());
+            indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
             m.meshes[p].push_back(range);
             m.triangles += mesh.indices.size() / 3;
         }

@@ -110,9 +110,30 @@ public:
     }
     [[noreturn]] void fail(const std::string& place, const std::string& what) const { throw Error(file, place, what); }
 
-    // The next section, which must be `name` with elements of T.
+    // The next section, which must be `name` with elements of T, copied.
     template <class T>
     std::vector<T> section(const char (&name)[5]) {
+        const std::span<const T> items = next<T>(name);
+        // Copied once into uninitialised storage (a sized vector would zero it first: twice the page faults).
+        return std::vector<T>(items.begin(), items.end());
+    }
+    // The same, viewed in place when the bytes are kept alive (a mapped file), else copied.
+    template <class T>
+    Bulk<T> bulk(const char (&name)[5]) {
+        if (!keeper) return section<T>(name);
+        return Bulk<T>(next<T>(name), keeper);
+    }
+
+    std::span<const std::byte> data;
+    const std::filesystem::path& file;
+    std::shared_ptr<const void> keeper;  // keeps `data` alive, when it may be viewed after parsing
+    std::size_t at = kHeader;
+
+private:
+    // The next section's elements, where they lie. The section starts 8-byte aligned in a page-aligned mapping or
+    // buffer, aligned enough for T.
+    template <class T>
+    std::span<const T> next(const char (&name)[5]) {
         const std::size_t start = at;
         if (data.size() - at < 16) fail(at, "truncated: section " + std::string(name) + " is missing");
         const auto t = bytes::get<std::uint32_t>(data.data() + at);
@@ -128,22 +149,13 @@ public:
         if (n > data.size() - at)
             fail(start, "truncated: section " + std::string(name) + " needs " + std::to_string(n) + " bytes, " +
                             std::to_string(data.size() - at) + " are left");
-        // Copied once into uninitialised storage (a sized vector would zero it first: twice the page faults). The
-        // section starts 8-byte aligned in a page-aligned mapping or buffer, aligned enough for T.
-        std::vector<T> items;
-        items.reserve(count);
-        const T* first = reinterpret_cast<const T*>(data.data() + at);
-        items.insert(items.end(), first, first + count);
+        const std::span<const T> items(reinterpret_cast<const T*>(data.data() + at), count);
         at += n;
         const std::size_t padded = (at + 7) / 8 * 8;
         if (padded > data.size()) fail(at, "truncated: section " + std::string(name) + "'s padding is missing");
         at = padded;
         return items;
     }
-
-    std::span<const std::byte> data;
-    const std::filesystem::path& file;
-    std::size_t at = kHeader;
 };
 
 bool finite(float v) { return std::isfinite(v); }
@@ -231,8 +243,12 @@ void write_hair_asset(const std::filesystem::path& path, const CookedShells& coo
     write_file_atomic(path, hair_asset_bytes(cooked));
 }
 
-CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesystem::path& file) {
+namespace {
+
+// `keeper`, when not null, keeps `data` alive: the large arrays are then viewed in place rather than copied.
+CookedShells parse(std::span<const std::byte> data, const std::filesystem::path& file, std::shared_ptr<const void> keeper) {
     Reader r(data, file);
+    r.keeper = std::move(keeper);
     if (data.size() < kHeader)
         r.fail(data.size(), "truncated: " + std::to_string(data.size()) + " bytes is shorter than the 32-byte header");
     if (std::memcmp(data.data(), kMagic, 8) != 0) r.fail(0, "not a coif hair asset (bad magic)");
@@ -241,7 +257,7 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
         r.fail(8, "asset format version " + std::to_string(version) + " (this coif reads version " +
                       std::to_string(kHairAssetVersion) + "; bake the asset again with this coif)");
     const auto sections = bytes::get<std::uint32_t>(data.data() + 12);
-    if (sections != kSections) r.fail(12, std::to_string(sections) + " sections (version 1 has " + std::to_string(kSections) + ")");
+    if (sections != kSections) r.fail(12, std::to_string(sections) + " sections (version " + std::to_string(kHairAssetVersion) + " has " + std::to_string(kSections) + ")");
     const auto size = bytes::get<std::uint64_t>(data.data() + 16);
     if (size != data.size())
         r.fail(16, "the header says " + std::to_string(size) + " bytes, the file has " + std::to_string(data.size()) +
@@ -332,8 +348,8 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     }
 
     // The arrays, and every count and index they must agree on.
-    p.vertices = r.section<ShellVertex>("VERT");
-    p.indices = r.section<std::uint32_t>("INDX");
+    p.vertices = r.bulk<ShellVertex>("VERT");
+    p.indices = r.bulk<std::uint32_t>("INDX");
     const std::vector<MeshRange> meshes = r.section<MeshRange>("MESH");
     const std::vector<std::uint32_t> protos = r.section<std::uint32_t>("PROT");
     p.sectors = r.section<ShellSector>("SECT");
@@ -341,11 +357,11 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     p.instances = r.section<ShellInstance>("INST");
     p.cluster_centre = r.section<glm::vec3>("CCEN");
     p.samples = r.section<LightingSample>("SAMP");
-    a.texels = r.section<std::uint8_t>("ATLS");
+    a.texels = r.bulk<std::uint8_t>("ATLS");
     a.mean_alpha = r.section<float>("MALP");
     a.mean_a0 = r.section<float>("MA0_");
-    g.diagonal_xy = r.section<glm::vec4>("GDIA");
-    g.off_diagonal = r.section<glm::vec2>("GOFF");
+    g.diagonal_xy = r.bulk<glm::vec4>("GDIA");
+    g.off_diagonal = r.bulk<glm::vec2>("GOFF");
     if (r.at != data.size()) r.fail(r.at, "unexpected bytes after the last section");
 
     const std::size_t P = protos.size(), C = cluster_proto.size(), per_proto = L.sector_count();
@@ -417,6 +433,12 @@ CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesy
     return c;
 }
 
+}  // namespace
+
+CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesystem::path& file) {
+    return parse(data, file, nullptr);
+}
+
 CookedShells read_hair_asset(const std::filesystem::path& path) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) throw Error(path, "", std::string("cannot open: ") + std::strerror(errno));
@@ -433,12 +455,9 @@ CookedShells read_hair_asset(const std::filesystem::path& path) {
     void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);  // read ahead in one go
     ::close(fd);
     if (map == MAP_FAILED) throw Error(path, "", std::string("cannot map: ") + std::strerror(errno));
-    struct Unmap {
-        void* p;
-        std::size_t n;
-        ~Unmap() { ::munmap(p, n); }
-    } unmap{map, size};
-    return parse_hair_asset(std::span<const std::byte>(static_cast<const std::byte*>(map), size), path);
+    // The mapping lives as long as the arrays viewed in it (Bulk): until the renderer has uploaded them and let go.
+    const std::shared_ptr<const void> mapping(map, [size](const void* p) { ::munmap(const_cast<void*>(p), size); });
+    return parse(std::span<const std::byte>(static_cast<const std::byte*>(map), size), path, mapping);
 }
 
 bool is_hair_asset(const std::filesystem::path& path) {

@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "models/core/bulk.h"
 #include "models/hair_style.h"
 #include "models/strands.h"
 #include "online/shells/shell_settings.h"
@@ -64,8 +65,8 @@ struct PreparedShells {
     DiskLayout layout;
     // Prototypes (slots in order of first use by a cluster).
     std::vector<std::size_t> prototypes;           // slot → the style's cluster index of the prototype
-    std::vector<ShellVertex> vertices;
-    std::vector<std::uint32_t> indices;
+    Bulk<ShellVertex> vertices;
+    Bulk<std::uint32_t> indices;
     std::vector<std::vector<MeshRange>> meshes;    // [slot][layer]
     std::vector<ShellSector> sectors;              // [slot · layout.sector_count() + sector]
     std::size_t triangles = 0;

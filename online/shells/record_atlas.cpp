@@ -39,7 +39,8 @@ RecordAtlas pack_atlas(std::size_t records, int views, int hrir_length, const st
     const int tile_rows = static_cast<int>((tiles + a.tiles_per_row - 1) / a.tiles_per_row);
     a.width = a.tiles_per_row * (X + 2 * B);
     a.height = std::max(1, tile_rows * (V + 2 * B));
-    a.texels.assign(static_cast<std::size_t>(a.width) * a.height * 4, 0);
+    std::vector<std::uint8_t>& texels = a.texels.vector();
+    texels.assign(static_cast<std::size_t>(a.width) * a.height * 4, 0);
     std::vector<AtlasTexels> record(static_cast<std::size_t>(V) * X);
     for (std::size_t rec = 0; rec < records; ++rec) {
         for (int v = 0; v < V; ++v)
@@ -53,7 +54,7 @@ RecordAtlas pack_atlas(std::size_t records, int views, int hrir_length, const st
                     const std::size_t at = (static_cast<std::size_t>(o.y + py) * a.width + o.x + px) * 4;
                     for (int ch = 0; ch < 4; ++ch) {
                         const float u = (t[part * 4 + ch] - lo[part][ch]) / scale[part][ch] * 255.0f;
-                        a.texels[at + ch] = static_cast<std::uint8_t>(std::clamp(std::lround(u), 0L, 255L));
+                        texels[at + ch] = static_cast<std::uint8_t>(std::clamp(std::lround(u), 0L, 255L));
                     }
                 }
         }

@@ -13,6 +13,8 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "models/core/bulk.h"
+
 namespace coif {
 
 inline constexpr int kAtlasParts = 3;            // shaders/gl/record_atlas.glsl ATLAS_PARTS
@@ -22,7 +24,7 @@ struct RecordAtlas {
     int width = 1, height = 1;       // texels
     int tiles_per_row = 1;
     int views = 0, hrir_length = 0;  // the database's angle grids (tile interior: hrir_length × views)
-    std::vector<std::uint8_t> texels;  // RGBA8, width × height, row 0 first
+    Bulk<std::uint8_t> texels;  // RGBA8, width × height, row 0 first
     std::array<glm::vec4, kAtlasParts> lo{}, scale{};  // value = lo + scale · texel / 255, per part and channel
     std::vector<float> mean_alpha, mean_a0;  // per record: mean α and mean re a0 over views and x
     // Σ mean a0 / Σ mean α over the whole database's records (docs/renderer.md), not only the atlas's: an atlas of

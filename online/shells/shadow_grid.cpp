@@ -63,8 +63,10 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
     g.dims = glm::min(glm::ivec3(glm::ceil(size / g.voxel)) + 4, glm::ivec3(max_dim));
     g.origin = 0.5f * (lo + hi) - 0.5f * g.extent();
     const std::size_t voxels = static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z;
-    g.diagonal_xy.assign(voxels, glm::vec4(0.0f));
-    g.off_diagonal.assign(voxels, glm::vec2(0.0f));
+    std::vector<glm::vec4>& diagonal_xy = g.diagonal_xy.vector();
+    std::vector<glm::vec2>& off_diagonal = g.off_diagonal.vector();
+    diagonal_xy.assign(voxels, glm::vec4(0.0f));
+    off_diagonal.assign(voxels, glm::vec2(0.0f));
     const float per_volume = 1.0f / (g.voxel * g.voxel * g.voxel);
     // One sub-segment of length `length` along the unit tangent t at q: ℓ t tᵀ / V spread over 8 voxels.
     const auto splat = [&](glm::vec3 q, glm::vec3 t, float length) {
@@ -78,8 +80,8 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
             const glm::ivec3 i = i0 + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
             if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, g.dims))) continue;
             const float w = ((c & 1) ? f.x : 1 - f.x) * ((c & 2) ? f.y : 1 - f.y) * ((c & 4) ? f.z : 1 - f.z);
-            g.diagonal_xy[g.index(i.x, i.y, i.z)] += w * m;
-            g.off_diagonal[g.index(i.x, i.y, i.z)] += w * o;
+            diagonal_xy[g.index(i.x, i.y, i.z)] += w * m;
+            off_diagonal[g.index(i.x, i.y, i.z)] += w * o;
         }
     };
     for (std::size_t s = 0; s + 1 < strands.offsets.size(); ++s)

@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "models/core/bulk.h"
 #include "models/strands.h"
 
 namespace coif {
@@ -29,8 +30,8 @@ struct DensityGrid {
     float voxel = 1.0f;       // edge length, world units
     glm::vec3 strands_min{0.0f}, strands_max{0.0f};  // the voxelized (turned) strands' bounding box
     // x fastest; M's diagonal (xx, yy, zz) and xy in `diagonal_xy`, (xz, yz) in `off_diagonal`: per unit volume
-    std::vector<glm::vec4> diagonal_xy;
-    std::vector<glm::vec2> off_diagonal;
+    Bulk<glm::vec4> diagonal_xy;
+    Bulk<glm::vec2> off_diagonal;
     glm::vec3 extent() const { return glm::vec3(dims) * voxel; }
     std::size_t index(int x, int y, int z) const { return (static_cast<std::size_t>(z) * dims.y + y) * dims.x + x; }
     // The length density tr M of a voxel.

@@ -130,7 +130,7 @@ TEST(HairAsset, RefusesHostileCountsAndIndicesWithTheChecksumRight) {
     }
     {  // an index beyond its mesh
         CookedShells h = c;
-        h.shells.indices[5] = 1u << 30;
+        h.shells.indices.vector()[5] = 1u << 30;
         EXPECT_NE(refusal(hair_asset_bytes(h)).find("an index outside its mesh"), std::string::npos);
     }
     {  // a NaN in a lighting sample
@@ -162,6 +162,17 @@ TEST(HairAsset, FileIsWrittenAtomicallyAndReadBack) {
     const CookedShells r = read_hair_asset(dir / "hair.coif");
     EXPECT_EQ(hair_asset_bytes(r), hair_asset_bytes(cooked()));
     EXPECT_THROW((void)read_hair_asset(dir / "missing.coif"), Error);
+    // The large arrays are viewed in the mapping, not copied (how the asset loads fast: docs/renderer.md), and the
+    // mapping outlives the file's name: a re-bake replaces the file atomically while a renderer still reads it.
+    EXPECT_TRUE(r.shells.vertices.viewed() && r.shells.indices.viewed() && r.atlas.texels.viewed() &&
+                r.grid.diagonal_xy.viewed() && r.grid.off_diagonal.viewed());
+    EXPECT_FALSE(parse_hair_asset(hair_asset_bytes(cooked()), "hair.coif").shells.vertices.viewed())
+        << "bytes without an owner are copied";
+    write_hair_asset(dir / "hair.coif", cooked());
+    {
+        auto context = gl::Context::headless();
+        EXPECT_EQ(draw(r).pixels, draw(cooked()).pixels);
+    }
     // Only the file itself is left: no temporaries.
     std::size_t files = 0;
     for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
@@ -187,8 +198,8 @@ TEST(HairAsset, FileIsWrittenAtomicallyAndReadBack) {
         t.atlas.mean_a0 = {m0};
         t.atlas.re_norm = cooked().atlas.re_norm;
         t.grid.dims = glm::ivec3(2);
-        t.grid.diagonal_xy.assign(8, glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
-        t.grid.off_diagonal.assign(8, glm::vec2(0.0f));
+        t.grid.diagonal_xy.vector().assign(8, glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
+        t.grid.off_diagonal.vector().assign(8, glm::vec2(0.0f));
         write_hair_asset(seed, t);
     }
 }

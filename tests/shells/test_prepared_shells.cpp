@@ -112,7 +112,7 @@ TEST(PreparedShells, PlacingAgainMovesOnlyTheClusters) {
     // The motion seam: a new orientation re-runs place_clusters only; meshes and look-ups stay.
     const HairStyle style = one_cluster_style();
     PreparedShells p = prepare_shells(style, test_index(), test_atlas().mean_alpha, glm::mat3(1.0f));
-    const std::vector<ShellVertex> vertices = p.vertices;
+    const std::vector<ShellVertex> vertices(p.vertices.begin(), p.vertices.end());
     const std::vector<ShellSector> sectors = p.sectors;
     const glm::mat3 turn = glm::mat3_cast(glm::angleAxis(1.5707963f, glm::vec3(0.0f, 0.0f, 1.0f)));  // −y → +x
     place_clusters(p, style, turn, 0);

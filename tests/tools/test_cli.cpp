@@ -1,8 +1,10 @@
 // The coif command as users meet it: help, exit codes, errors on stderr, no partial output files.
+#include <filesystem>
 #include <fstream>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "models/absorption_map.h"
 #include "models/core/atomic_file.h"
@@ -25,7 +27,7 @@ TEST(Cli, HelpListsEveryNounAndExitsZero) {
 
 // Every leaf subcommand's help has a description and an example.
 TEST(Cli, EverySubcommandHelpTeaches) {
-    for (const char* cmd : {"hair inspect", "hair convert", "render", "bake", "view", "bench gl"}) {
+    for (const char* cmd : {"hair inspect", "hair convert", "render", "bake", "view", "bench gl", "bench load"}) {
         const auto r = run_coif(std::string(cmd) + " --help");
         EXPECT_EQ(r.exit_code, 0) << cmd;
         EXPECT_THAT(r.out, HasSubstr("Examples:")) << cmd;
@@ -279,6 +281,29 @@ TEST(Cli, BakedAssetRendersAsItsStyleAndDamagedAssetsAreRefused) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_FALSE(fs::exists(dir / "x.coif"));
     fs::remove_all(dir);
+}
+
+TEST(Cli, BenchLoadTimesTheAssetBesideTheStyle) {
+    // The figures vary; what is checked is that each phase is measured and the temporary asset is removed.
+    namespace fs = std::filesystem;
+    const auto temporaries = [] {
+        std::set<fs::path> found;
+        for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+            if (e.path().filename().string().rfind("coif-bench-load-", 0) == 0) found.insert(e.path());
+        return found;
+    };
+    const std::set<fs::path> before = temporaries();
+    const auto r = run_coif("bench load --repeats 2 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_GT(j["asset_bytes"].get<double>(), 1e6);
+    for (const char* key : {"asset_first", "asset_later_median", "style_and_database_first", "style_and_database_later_median"}) {
+        EXPECT_GT(j[key]["upload_ms"].get<double>(), 0.0) << key;
+        EXPECT_GT(j[key]["read_ms"].get<double>(), 0.0) << key;
+    }
+    EXPECT_EQ(j["asset_first"]["cook_ms"].get<double>(), 0.0);
+    EXPECT_GT(j["style_and_database_first"]["cook_ms"].get<double>(), 0.0);
+    EXPECT_EQ(temporaries(), before);
 }
 
 }  // namespace
