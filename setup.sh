@@ -27,6 +27,14 @@ install_packages() {
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
   fi
+  # Dear ImGui's GLFW and OpenGL 3 backends ship as example sources in libimgui-dev's documentation; where dpkg
+  # leaves /usr/share/doc out, they are taken from the package itself (cmake/CoifDependencies.cmake looks there too).
+  if [[ ! -f /usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp &&
+        ! -f build/deb/root/usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp ]]; then
+    echo "setup: extracting Dear ImGui's backend sources from the libimgui-dev package"
+    mkdir -p build/deb
+    (cd build/deb && apt-get download libimgui-dev && dpkg-deb -x libimgui-dev_*.deb root)
+  fi
 }
 
 build() {  # build <preset>

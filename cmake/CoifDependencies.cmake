@@ -23,6 +23,18 @@ endif()
 if(COIF_BUILD_TOOLS)
   find_package(CLI11 CONFIG REQUIRED)
   find_package(glfw3 CONFIG REQUIRED)
+  # Dear ImGui (libimgui-dev 1.86): the core as a library; its GLFW and OpenGL 3 backends ship only as example
+  # sources in the package's documentation, compiled by online/window/ (setup.sh extracts them from the package when
+  # a system drops /usr/share/doc).
+  pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+  find_path(COIF_IMGUI_BACKENDS imgui_impl_glfw.cpp
+            PATHS /usr/share/doc/libimgui-dev/examples/backends
+                  ${PROJECT_SOURCE_DIR}/build/deb/root/usr/share/doc/libimgui-dev/examples/backends
+            NO_DEFAULT_PATH)
+  if(NOT COIF_IMGUI_BACKENDS)
+    message(FATAL_ERROR "Dear ImGui's GLFW/OpenGL3 backend sources are missing (libimgui-dev's examples/backends); "
+                        "run ./setup.sh build, which installs or extracts them")
+  endif()
 endif()
 if(COIF_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)

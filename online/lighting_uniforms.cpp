@@ -58,7 +58,7 @@ void set_lighting_uniforms(const Program& program, const shading::HairParams& ha
 }
 
 Buffer make_lights_buffer(std::span<const SrbfLight> lights) {
-    struct GpuLight {  // std430 mirror of shaders/gl/srbf_lights.glsl
+    struct GpuLight {  // std430 mirror of shaders/gl/srbf_light_buffer.glsl
         glm::vec4 direction_lambda, radiance;
     };
     std::vector<GpuLight> gpu;

@@ -26,18 +26,13 @@ namespace {
 
 struct RenderOptions {
     coif::cli::SceneOptions scene;
+    coif::cli::ShellOptions shell;
     std::string output = "coif.png";
-    std::string db, env, params, absorption, compositing;
     float exposure = 0.0f;
     bool preview = false;
     bool aovs = false;
-    int samples = 4;
-    int lighting_rows = 0;
-    float radius = 0.0f;
     bool per_fragment = false;
     bool alpha = false;
-    std::vector<float> background;
-    double rotate_lights_deg = 0;
     bool json = false;
 };
 
@@ -66,31 +61,10 @@ void add_render(CLI::App& root) {
         "Output: .png (tone-mapped sRGB: exposure, clip, sRGB curve) or .exr (linear half float); written atomically.");
     o->scene.add_to(render);
     render->add_option("-o,--output", o->output, "Image to write (.png, .exr or .hdr)")->capture_default_str();
-    coif::cli::add_background_option(render, o->background);
-    coif::cli::add_rotate_lights_option(render, o->rotate_lights_deg);
     render->add_flag("--json", o->json,
                      "Print a summary as JSON on stdout (output, size, timings; for the shells also the database coverage "
                      "of the style's sectors and any warnings)");
-    render->add_option("--db", o->db, "HRIR database (coif db build); default: the cached default database");
-    render->add_option("--env", o->env,
-                       "Environment: SRBF lights JSON (coif env fit) or an equirectangular .exr/.hdr map (fitted with "
-                       "40 lights); default: the embedded courtyard lights");
-    render->add_option("--params", o->params,
-                       "Parameters file: a JSON object of the keys listed below, each optional; default: 000's brown hair "
-                       "and the renderer's defaults. The strand lines read the hair keys only");
-    render->add_option("--absorption", o->absorption,
-                       "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
-                       "--params' sigma_a");
-    render->add_option("--lighting-rows", o->lighting_rows,
-                   "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
-        ->check(CLI::Range(0, 64))->capture_default_str();
-    render->add_option("--samples", o->samples,
-                       "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) round(sqrt(N))^2 "
-                       "frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")->check(CLI::Range(1, 16))->capture_default_str();
-    render->add_option("--compositing", o->compositing,
-                       "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), sorted "
-                       "(clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
-        ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
+    o->shell.add_to(render);
     render->add_option("--exposure", o->exposure, "Exposure in stops for the PNG tone map")->capture_default_str();
     std::string lobe_aovs;
     for (const coif::shading::Lobe& lobe : coif::shading::kLobes) lobe_aovs += std::string("OUT.") + lobe.name + ", ";
@@ -98,11 +72,6 @@ void add_render(CLI::App& root) {
                      "Also write the separate images " + lobe_aovs + "OUT.multiple (each scattering term alone, over "
                      "black: they add up to the image over black) and OUT.shadow (the unoccluded fraction of the light "
                      "times the within-cluster shadow, as coverage-weighted grey)");
-    render->add_option("--radius", o->radius,
-                       "Fibre radius in scene units, as coif reference --radius: the strand lines' pixel coverage 2r/pixel, and "
-                       "the fibres that the shells' shadows between clusters count (the --params key fiber_radius; 0 = the "
-                       "reference's auto radius, 1e-3 of the strands' bounding-box diagonal)")
-        ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
     render->add_flag("--per-fragment", o->per_fragment,
                      "Strand lines: evaluate the lighting at every fragment, not at the strand points (exact, ~50x slower)");
     render->add_flag("--alpha", o->alpha,
@@ -134,17 +103,17 @@ void add_render(CLI::App& root) {
         if (o->preview || !o->scene.strands.empty()) {
             // Everything that can be refused is read before anything is rendered or written.
             coif::gl::StrandSettings settings;
-            settings.samples = o->samples;
-            settings.fiber_radius = o->radius;
+            settings.samples = o->shell.samples;
+            settings.fiber_radius = o->shell.radius;
             settings.per_fragment = o->per_fragment;
             settings.alpha = o->alpha;
-            settings.background = coif::cli::background_color(o->background);
-            if (!o->params.empty()) {
-                settings.hair = coif::gl::read_shell_settings(o->params).hair;
+            settings.background = coif::cli::background_color(o->shell.background);
+            if (!o->shell.params.empty()) {
+                settings.hair = coif::gl::read_shell_settings(o->shell.params).hair;
             }
             std::string lights_label, label;
             const std::vector<coif::SrbfLight> lights = coif::rotate_srbf_lights_y(
-                coif::cli::load_render_lights(o->env, &lights_label), coif::cli::lights_rotation(o->rotate_lights_deg));
+                coif::cli::load_render_lights(o->shell.env, &lights_label), coif::cli::lights_rotation(o->shell.rotate_lights_deg));
             const coif::Strands strands = o->scene.load_strands(&label);
             const coif::Camera camera = o->scene.camera_for(strands);
             auto context = coif::gl::Context::headless();
@@ -175,23 +144,15 @@ void add_render(CLI::App& root) {
         // Everything that can be refused is read before anything is rendered or written.
         if (o->alpha) throw coif::Error::parameter("option --alpha", "only the strand lines (--strands, --preview-strands) write straight alpha");
         const auto t_inputs = std::chrono::steady_clock::now();
-        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
+        coif::cli::SceneInputs inputs = o->shell.read_inputs(o->scene);
         const double inputs_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_inputs).count();
         const bool from_asset = inputs.cooked.has_value();
-        // An asset's baked parameters are the base that --params and the options change.
-        coif::gl::ShellSettings settings = inputs.cooked ? inputs.cooked->defaults : coif::gl::ShellSettings{};
-        settings.samples = o->samples;
-        if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
-        if (o->radius > 0) settings.fiber_radius = o->radius;
-        settings.background = coif::cli::background_color(o->background);
-        if (!o->compositing.empty()) settings.compositing = coif::gl::parse_compositing(o->compositing, "", "option --compositing");
+        coif::gl::ShellSettings settings = o->shell.settings(inputs);
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
-        inputs.lights = coif::rotate_srbf_lights_y(inputs.lights, coif::cli::lights_rotation(o->rotate_lights_deg));
-        std::optional<coif::AbsorptionMap> absorption;
-        if (!o->absorption.empty()) absorption = coif::read_absorption_map(o->absorption, inputs.clusters());
+        const std::optional<coif::AbsorptionMap> absorption = o->shell.absorption_map(inputs);
         const auto t_scene = std::chrono::steady_clock::now();
         coif::gl::HairScene scene(
-            coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->db, o->lighting_rows, absorption ? &*absorption : nullptr));
+            coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->shell.db, o->shell.lighting_rows, absorption ? &*absorption : nullptr));
         const double scene_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_scene).count();
         coif::gl::ShellRenderer& renderer = *scene.renderer;
         const coif::Camera& camera = scene.camera;

@@ -1,11 +1,10 @@
-// coif view — the interactive viewer (online/window/viewer.h). Current state: the strand preview with an orbit
-// camera; appearance editing arrives with the renderer.
+// coif view — the interactive viewer (online/window/viewer.h): the shell renderer of `coif render` in a window, the
+// same scene from the same options, and scripts of viewer actions (online/window/viewer_script.h).
 #include <cstdio>
 #include <memory>
-#include <tuple>
 
 #include "models/core/error.h"
-#include "models/core/image.h"
+#include "online/scene/hair_scene.h"
 #include "online/window/viewer.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"
@@ -14,39 +13,71 @@ namespace {
 
 struct ViewOptions {
     coif::cli::SceneOptions scene;
+    coif::cli::ShellOptions shell;
     int frames = 0;
-    std::string screenshot;
+    float exposure = 0.0f;
+    bool no_environment = false;
+    std::string screenshot, script;
 };
 
 void add_view(CLI::App& root) {
     auto o = std::make_shared<ViewOptions>();
+    o->shell.samples = 1;  // one frame per frame; screenshots supersample as coif render does with --samples N
     CLI::App* view = root.add_subcommand(
         "view",
-        "Open the interactive viewer in a window\n"
-        "It needs a display: use `xvfb-run -a coif view` without one.\n"
-        "Drag with the left mouse button to orbit, scroll to zoom, Esc or Q to quit.\n"
-        "Current state: strands drawn with the preview shading (see `coif render --help`).");
+        "Open the renderer in a window: `coif render`'s scene, live\n"
+        "The SATF shells lit by the SRBF lights, exactly as `coif render` draws them from the same options (a style\n"
+        "cooked against the database, or a baked .coif asset, view-only), shown sRGB as coif render's PNGs, over the\n"
+        "environment's lights (B: the plain --background instead). It needs a display: use `xvfb-run -a coif view`\n"
+        "without one.\n"
+        "Left drag orbits, right drag (or Shift + left drag) pans, the wheel zooms, F frames the hair again, + and -\n"
+        "change the exposure, S writes a screenshot (the image `coif render` writes for this camera), Esc or Q quits.\n"
+        "While the camera is dragged the frame is drawn at half size. The title shows the frame time and its passes.\n"
+        "--script FILE replays viewer actions instead of a person (a JSON array; each action is one object):\n"
+        "  {\"orbit\": [AZ, EL]} {\"zoom\": F} {\"pan\": [X, Y]} {\"fit\": true} {\"set\": {PARAMS}} {\"params\": FILE}\n"
+        "  {\"background\": true|false} {\"exposure\": STOPS} {\"frames\": N} {\"screenshot\": FILE} {\"capture\": FILE}\n"
+        "A frame is drawn after each action, and the viewer quits after the last. The whole script is checked first:\n"
+        "an unknown action or a value out of range is refused before the window opens.");
     o->scene.add_to(view);
+    o->shell.add_to(view);
     view->add_option("--frames", o->frames, "Quit after this many frames (0 = run until closed); for scripts and tests")
         ->check(CLI::NonNegativeNumber);
-    view->add_option("--screenshot", o->screenshot, "Write the last frame to this image (.png/.exr) when the viewer quits");
-    coif::cli::examples(view, "  coif view\n  coif view --strands ../shared/data/harolongo.data\n"
-                              "  xvfb-run -a coif view --frames 3 --screenshot shot.png");
+    view->add_option("--exposure", o->exposure, "Exposure in stops, of the display and of PNG screenshots")->capture_default_str();
+    view->add_flag("--no-environment", o->no_environment, "Start with the plain --background behind the hair (B switches)");
+    view->add_option("--screenshot", o->screenshot,
+                     "The image the S key writes (.png/.exr; default coif-view-N.png); without a script, also written "
+                     "when the viewer quits after --frames");
+    view->add_option("--script", o->script, "Replay the viewer actions of this JSON file, then quit (see above)");
+    coif::cli::examples(view, "  coif view\n  coif view --style hair.coif\n"
+                              "  coif view --env ../shared/data/blender_studiolight_city.exr --params red.json\n"
+                              "  xvfb-run -a coif view --frames 3 --screenshot shot.png\n"
+                              "  xvfb-run -a coif view --script actions.json");
     view->callback([o] {
+        // Everything that can be refused is read before the window opens.
         coif::gl::ViewerOptions vo;
-        vo.strands = o->scene.load_strands();
-        std::tie(vo.frame_min, vo.frame_max) = o->scene.frame_box(vo.strands);
+        if (!o->script.empty()) vo.script = coif::gl::read_viewer_script(o->script);
+        coif::cli::SceneInputs inputs = o->shell.read_inputs(o->scene);
+        vo.settings = o->shell.settings(inputs);
+        const std::optional<coif::AbsorptionMap> absorption = o->shell.absorption_map(inputs);
+        vo.scene = coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->shell.db, o->shell.lighting_rows,
+                                              absorption ? &*absorption : nullptr);
         vo.view = o->scene.orbit_view();
+        vo.exposure = o->exposure;
+        vo.environment = !o->no_environment;
         vo.frames = o->frames;
-        vo.keep_last_frame = !o->screenshot.empty();
-        const coif::gl::ViewerResult result = coif::gl::run_viewer(vo);
-        if (!o->screenshot.empty()) {
-            if (!result.last_frame) throw coif::Error(o->screenshot, "", "no frame was drawn, so there is nothing to save");
-            coif::WriteOptions wo;
-            wo.description = coif::gl::kStrandPreviewLabel;
-            coif::write_image(o->screenshot, *result.last_frame, wo);
-            std::fprintf(stderr, "wrote %s\n", o->screenshot.c_str());
+        vo.screenshot = o->screenshot;
+        if (!o->screenshot.empty() && o->script.empty() && o->frames > 0) {  // draw the frames, then the screenshot
+            coif::gl::ViewerAction frames, shot;
+            frames.kind = coif::gl::ViewerAction::Kind::frames;
+            frames.x = o->frames;
+            shot.kind = coif::gl::ViewerAction::Kind::screenshot;
+            shot.path = o->screenshot;
+            shot.where = "option --screenshot";
+            vo.script = {frames, shot};
         }
+        const coif::gl::ViewerResult r = coif::gl::run_viewer(std::move(vo));
+        for (const auto& p : r.written) std::fprintf(stderr, "wrote %s\n", p.c_str());
+        std::fprintf(stderr, "coif view: %d frames, the last %.1f ms\n", r.frames, r.last_frame_ms);
     });
 }
 

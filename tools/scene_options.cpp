@@ -152,4 +152,59 @@ gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs,
     return d;
 }
 
+void ShellOptions::add_to(CLI::App* app) {
+    app->add_option("--db", db, "HRIR database (coif db build); default: the cached default database");
+    app->add_option("--env", env,
+                    "Environment: SRBF lights JSON (coif env fit) or an equirectangular .exr/.hdr map (fitted with 40 "
+                    "lights); default: the embedded courtyard lights");
+    app->add_option("--params", params,
+                    "Parameters file: a JSON object of the keys listed below, each optional; default: 000's brown hair and "
+                    "the renderer's defaults (for a .coif asset: the parameters it was baked with)");
+    app->add_option("--absorption", absorption,
+                    "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
+                    "--params' sigma_a");
+    app->add_option("--lighting-rows", lighting_rows,
+                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
+        ->check(CLI::Range(0, 64))
+        ->capture_default_str();
+    app->add_option("--samples", samples,
+                    "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) round(sqrt(N))^2 "
+                    "frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
+    app->add_option("--compositing", compositing,
+                    "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), sorted "
+                    "(clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
+        ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
+    app->add_option("--radius", radius,
+                    "Fibre radius in scene units, as coif reference --radius: the strand lines' pixel coverage 2r/pixel, and "
+                    "the fibres that the shells' shadows between clusters count (the --params key fiber_radius; 0 = the "
+                    "reference's auto radius, 1e-3 of the strands' bounding-box diagonal)")
+        ->check(CLI::Range(0.0f, 1e6f))
+        ->capture_default_str();
+    add_background_option(app, background);
+    add_rotate_lights_option(app, rotate_lights_deg);
+}
+
+gl::ShellSettings ShellOptions::settings(const SceneInputs& inputs) const {
+    gl::ShellSettings s = inputs.cooked ? inputs.cooked->defaults : gl::ShellSettings{};
+    s.samples = samples;
+    if (!params.empty()) s = gl::read_shell_settings(params, s);
+    if (radius > 0) s.fiber_radius = radius;
+    s.background = background_color(background);
+    if (!compositing.empty()) s.compositing = gl::parse_compositing(compositing, "", "option --compositing");
+    return s;
+}
+
+SceneInputs ShellOptions::read_inputs(const SceneOptions& scene) const {
+    SceneInputs in = read_scene_inputs(scene, env);
+    in.lights = rotate_srbf_lights_y(in.lights, lights_rotation(rotate_lights_deg));
+    return in;
+}
+
+std::optional<AbsorptionMap> ShellOptions::absorption_map(const SceneInputs& inputs) const {
+    if (absorption.empty()) return std::nullopt;
+    return read_absorption_map(absorption, inputs.clusters());
+}
+
 }  // namespace coif::cli

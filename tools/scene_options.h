@@ -13,6 +13,7 @@
 #include "models/strands.h"
 #include "offline/srbf_lights.h"
 #include "online/shells/hair_asset.h"
+#include "online/shells/shell_settings.h"
 #include "tools/cli.h"
 
 namespace coif::gl {
@@ -84,5 +85,25 @@ SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env)
 // shell_framing().
 gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs, const std::string& db_path,
                                   int lighting_rows, const AbsorptionMap* absorption = nullptr);
+
+// The shell renderer's options beyond the scene, declared once for the commands that draw the shells (render, view):
+// --db, --env, --params, --absorption, --lighting-rows, --samples, --compositing, --radius, --background and
+// --rotate-lights.
+struct ShellOptions {
+    std::string db, env, params, absorption, compositing;
+    int samples = 4;
+    int lighting_rows = 0;
+    float radius = 0.0f;
+    std::vector<float> background;
+    double rotate_lights_deg = 0;
+
+    void add_to(CLI::App* app);
+    // The parameters to draw with: an asset's baked ones (else the library's), then --params, then the options.
+    gl::ShellSettings settings(const SceneInputs& inputs) const;
+    // read_scene_inputs with these options' --env, the lights turned by --rotate-lights.
+    SceneInputs read_inputs(const SceneOptions& scene) const;
+    // The --absorption map for these inputs' clusters, when given.
+    std::optional<AbsorptionMap> absorption_map(const SceneInputs& inputs) const;
+};
 
 }  // namespace coif::cli

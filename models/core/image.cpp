@@ -10,6 +10,7 @@
 
 #include "models/core/atomic_file.h"
 #include "models/core/error.h"
+#include "shaders/display.h"
 
 namespace coif {
 namespace fs = std::filesystem;
@@ -26,11 +27,7 @@ float srgb_to_linear(float v) {
     return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
-float tone_map_srgb(float linear, float exposure_scale) {
-    float v = linear * exposure_scale;
-    v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : (v > 0 ? 1.0f : 0.0f);
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+float tone_map_srgb(float linear, float exposure_scale) { return glsl::tone_map_srgb(linear, exposure_scale); }
 
 Image read_image(const fs::path& path, ImageInfo* info) {
     std::error_code ec;

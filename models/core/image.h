@@ -59,7 +59,7 @@ struct WriteOptions {
 void write_image(const std::filesystem::path& path, const Image& image, const WriteOptions& options = {});
 
 // The PNG tone map above, for one linear channel value; exposure_scale = 2^exposure.
-float tone_map_srgb(float linear, float exposure_scale);
+float tone_map_srgb(float linear, float exposure_scale);  // shaders/display.glsl: the viewer displays with the same
 float srgb_to_linear(float encoded);
 
 }  // namespace coif

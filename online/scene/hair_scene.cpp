@@ -1,15 +1,22 @@
 #include "online/scene/hair_scene.h"
 
+#include <tuple>
+
 #include "db/default_database.h"
 #include "models/core/error.h"
 #include "online/scene/cook.h"
 
 namespace coif::gl {
 
-Camera SceneFraming::camera_for(Strands sampled) const {
-    if (box) return view.around(box->first, box->second);
+std::pair<glm::vec3, glm::vec3> SceneFraming::box_for(Strands sampled) const {
+    if (box) return *box;
     const StrandStats st = strand_stats(keep_axes ? sampled : oriented_y_up(std::move(sampled)));
-    return view.around(glm::vec3(st.bbox_min), glm::vec3(st.bbox_max));
+    return {glm::vec3(st.bbox_min), glm::vec3(st.bbox_max)};
+}
+
+Camera SceneFraming::camera_for(Strands sampled) const {
+    const auto [lo, hi] = box_for(std::move(sampled));
+    return view.around(lo, hi);
 }
 
 void refuse_eye_inside(const Camera& camera, const ShellRenderer& r) {
@@ -29,11 +36,12 @@ namespace {
 ShellView make_view(CookedShells cooked, const Strands* sampled, const std::vector<SrbfLight>& lights,
                     const AbsorptionMap* absorption, const SceneFraming& framing) {
     ShellView v;
-    if (framing.box) v.camera = framing.view.around(framing.box->first, framing.box->second);
+    if (framing.box) std::tie(v.frame_min, v.frame_max) = *framing.box;
     else if (framing.keep_axes) {
         if (!sampled) throw Error::parameter("keep axes", "an asset is framed as it was baked; keeping the axes needs the style");
-        v.camera = framing.camera_for(*sampled);
-    } else v.camera = framing.view.around(cooked.frame_min, cooked.frame_max);
+        std::tie(v.frame_min, v.frame_max) = framing.box_for(*sampled);
+    } else std::tie(v.frame_min, v.frame_max) = std::pair(cooked.frame_min, cooked.frame_max);
+    v.camera = framing.view.around(v.frame_min, v.frame_max);
     v.renderer = std::make_unique<ShellRenderer>(std::move(cooked));
     v.renderer->set_lights(lights);
     if (absorption) v.renderer->set_absorption(absorption);
@@ -55,17 +63,19 @@ HairScene::HairScene(HairSceneDesc desc)
     ShellView v;
     if (desc.cooked) {
         database_label = desc.cooked->database;
-        context = Context::headless();
+        if (desc.headless) context = Context::headless();
         v = make_view(std::move(*desc.cooked), nullptr, lights, desc.absorption, desc.framing);
     } else {
         db.emplace(open_database_or_default(desc.database, desc.log));
         satf.emplace(SatfIndex::open(*db, SatfOptions{}));
         database_label = db->path().string();
-        context = Context::headless();
+        if (desc.headless) context = Context::headless();
         v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows);
     }
     renderer = std::move(v.renderer);
     camera = v.camera;
+    frame_min = v.frame_min;
+    frame_max = v.frame_max;
 }
 
 ShellView HairScene::view_of(const HairStyle& other, const SceneFraming& framing, int lighting_rows) const {

@@ -36,6 +36,8 @@ struct SceneFraming {
     // (ShellRenderer's `sampled_strands`), turned y-up unless keep_axes: what `coif reference` frames for the same
     // options, so that the two images line up pixel for pixel.
     Camera camera_for(Strands sampled) const;
+    // The box camera_for frames.
+    std::pair<glm::vec3, glm::vec3> box_for(Strands sampled) const;
 };
 
 struct HairSceneDesc {
@@ -51,6 +53,9 @@ struct HairSceneDesc {
     int lighting_rows = 0;             // ShellRenderer's lighting_rows_per_hsv (0: one per mesh row)
     const AbsorptionMap* absorption = nullptr;  // painted σa, or null; must outlive the scene
     SceneFraming framing;
+    // Make a headless GL context (EGL) for the scene; false: draw with the caller's, current on this thread (a
+    // window's: coif view).
+    bool headless = true;
 };
 
 // Throws coif::Error::parameter if the camera's eye lies inside the renderer's shells' box (nothing sensible
@@ -65,11 +70,12 @@ RenderTarget camera_target(const Camera& camera, int samples);
 struct ShellView {
     std::unique_ptr<ShellRenderer> renderer;
     Camera camera;
+    glm::vec3 frame_min{0.0f}, frame_max{0.0f};  // the box the camera frames (to place other cameras around it)
 };
 
 struct HairScene {
-    // Opens (or builds) the database and its SATF index, makes a headless GL context, prepares the style's shells
-    // and frames them; throws coif::Error (also when the camera's eye is inside the hair).
+    // Opens (or builds) the database and its SATF index, makes a headless GL context (unless desc.headless is
+    // false), prepares the style's shells and frames them; throws coif::Error (also when the camera's eye is inside the hair).
     explicit HairScene(HairSceneDesc desc);
     HairScene(const HairScene&) = delete;
     HairScene& operator=(const HairScene&) = delete;
@@ -85,9 +91,10 @@ struct HairScene {
     std::optional<HrirDatabase> db;   // none for an asset
     std::optional<SatfIndex> satf;
     std::string database_label;       // the database drawn with: its path, or for an asset the one it was baked against
-    std::unique_ptr<Context> context;
+    std::unique_ptr<Context> context;  // null when HairSceneDesc::headless was false
     std::unique_ptr<ShellRenderer> renderer;
     Camera camera;
+    glm::vec3 frame_min{0.0f}, frame_max{0.0f};  // the box the camera frames (SceneFraming)
 };
 
 }  // namespace coif::gl

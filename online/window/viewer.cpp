@@ -1,82 +1,555 @@
 #include "online/window/viewer.h"
 
 #include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <string>
 
+#include "models/core/error.h"
+#include "models/core/image.h"
+#include "models/core/log.h"
 #include "online/gl.h"
+#include "online/lighting_uniforms.h"
+#include "online/shell_renderer.h"
 #include "online/window/window.h"
+#include "shaders/hair_parameters.h"
 
 namespace coif::gl {
+
+Camera ViewerCamera::camera(const OrbitView& base, glm::vec3 lo, glm::vec3 hi, int width, int height) const {
+    OrbitView v = base;
+    v.azimuth = static_cast<float>(azimuth);
+    v.elevation = static_cast<float>(elevation);
+    v.width = width;
+    v.height = height;
+    Camera c = v.around(lo, hi);
+    if (zoom == 1.0 && pan == glm::dvec2(0.0)) return c;  // coif render's camera, bit for bit
+    const glm::vec3 back = c.eye - c.target;
+    const float distance = glm::length(back);
+    // Pan in the view plane, in framed heights (the height the field of view spans at the target).
+    const glm::vec3 forward = -back / distance;
+    const glm::vec3 right = glm::normalize(glm::cross(forward, c.up)), up = glm::cross(right, forward);
+    const float framed_height = 2.0f * distance * std::tan(0.5f * c.fov_y);
+    const glm::vec3 shift = framed_height * (float(pan.x) * right + float(pan.y) * up);
+    c.target += shift;
+    c.eye = c.target + float(zoom) * back;
+    c.near_plane *= float(zoom);
+    c.far_plane *= float(zoom);
+    return c;
+}
+
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 // Orbit per pixel of mouse drag, and the elevation's limit (short of the poles, where the y-up camera turns over).
 const double kDragRadiansPerPixel = glm::radians(0.4);
 const double kMaxElevation = glm::radians(89.0);
-// Each scroll step moves the eye 10% nearer (or farther), within [0.1, 10] times the framing distance.
+// Each wheel step moves the eye 10 % nearer (or farther), within [0.1, 10] times the framing distance.
 constexpr double kZoomPerStep = 0.9, kMinZoom = 0.1, kMaxZoom = 10.0;
+constexpr float kExposureStep = 1.0f / 3.0f;  // stops per + / − key
+constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera is dragged
+constexpr float kPanelWidth = 300.0f, kPanelLabels = 130.0f;  // pixels: the panel, and its labels' column
+constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
-struct Orbit {
-    double azimuth, elevation, distance_scale = 1.0;
-    bool dragging = false;
-    double last_x = 0, last_y = 0;
+struct Input {
+    double scroll = 0;                 // wheel steps since the last frame
+    std::vector<int> keys;             // keys pressed since the last frame
+};
+
+// Dear ImGui in the window: its context and backends, made after the viewer's own GLFW callbacks (which the
+// backend chains to) and torn down before the window.
+class Gui {
+public:
+    explicit Gui(GLFWwindow* w) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
+        ImGui::StyleColorsDark();
+        // The parameters' help speaks Greek (σa, η, β_R): DejaVu Sans (Debian's fonts-dejavu-core) with the Greek
+        // and general punctuation ranges; ImGui's built-in ASCII font if it is missing.
+        static const ImWchar ranges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2000, 0x22FF, 0};
+        if (std::filesystem::exists(kFont)) ImGui::GetIO().Fonts->AddFontFromFileTTF(kFont, 15.0f, nullptr, ranges);
+        if (!ImGui_ImplGlfw_InitForOpenGL(w, true) || !ImGui_ImplOpenGL3_Init("#version 450 core"))
+            throw Error::parameter("viewer", "the Dear ImGui panel could not start");
+    }
+    ~Gui() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    Gui(const Gui&) = delete;
+    Gui& operator=(const Gui&) = delete;
+};
+
+// One parameter of a table (models/core/param_table.h) as a widget, in its interface unit; true when changed.
+template <class T>
+bool param_widget(const Param<T>& p, T& target) {
+    bool changed = false;
+    const std::string& label = p.key;  // the unit and range are in the tooltip
+    const double lo = p.min, hi = std::isfinite(p.max) ? p.max : p.min + 1e3 * std::max(1.0, std::abs(p.min) + 1.0);
+    switch (p.kind) {
+        case ParamKind::real:
+        case ParamKind::rgb: {
+            double v[3];
+            for (int c = 0; c < p.components(); ++c) v[c] = p.get(target, c);
+            const bool wide = hi - lo > 1000.0;  // σa's 0 … 10⁴: dragged, not slid
+            changed = wide ? ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, v, p.components(), 0.01f, &lo, &hi, "%.4g")
+                           : ImGui::SliderScalarN(label.c_str(), ImGuiDataType_Double, v, p.components(), &lo, &hi, "%.4g");
+            if (changed)
+                for (int c = 0; c < p.components(); ++c) {
+                    double x = std::clamp(v[c], lo, hi);
+                    if (p.min_exclusive && x <= p.min) x = std::nextafter(p.min, hi);
+                    p.set(target, c, x);
+                }
+            break;
+        }
+        case ParamKind::integer: {
+            int v = static_cast<int>(p.get(target, 0));
+            const int ilo = static_cast<int>(lo), ihi = static_cast<int>(std::min(hi, 1e6));
+            if ((changed = ImGui::SliderInt(label.c_str(), &v, ilo, ihi))) p.set(target, 0, std::clamp(v, ilo, ihi));
+            break;
+        }
+        case ParamKind::boolean: {
+            bool v = p.get(target, 0) != 0.0;
+            if ((changed = ImGui::Checkbox(label.c_str(), &v))) p.set(target, 0, v ? 1.0 : 0.0);
+            break;
+        }
+        case ParamKind::choice: {
+            int v = static_cast<int>(p.get(target, 0));
+            std::vector<const char*> names;
+            for (const std::string& n : p.names) names.push_back(n.c_str());
+            if ((changed = ImGui::Combo(label.c_str(), &v, names.data(), static_cast<int>(names.size())))) p.set(target, 0, v);
+            break;
+        }
+        case ParamKind::flags: {
+            unsigned bits = static_cast<unsigned>(p.get(target, 0));
+            ImGui::TextUnformatted(label.c_str());
+            for (std::size_t i = 0; i < p.names.size(); ++i) {
+                bool on = bits & (1u << i);
+                ImGui::SameLine();
+                if (ImGui::Checkbox((p.names[i] + "##" + p.key).c_str(), &on)) {
+                    bits = on ? bits | (1u << i) : bits & ~(1u << i);
+                    changed = true;
+                }
+            }
+            if (changed) p.set(target, 0, bits);
+            break;
+        }
+    }
+    if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s\n%s", p.help.c_str(), accepted_text(p).c_str());
+    return changed;
+}
+
+// The viewer's state and its GL resources, in the window's context.
+class Viewer {
+public:
+    explicit Viewer(ViewerOptions& o)
+        : o_(o),
+          settings_(o.settings),
+          exposure_(o.exposure),
+          environment_(o.environment),
+          window_(o.view.width, o.view.height, "coif view"),
+          scene_(scene_desc(o)),
+          background_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_background.frag"}),
+          present_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_present.frag"}),
+          lights_(make_lights_buffer(scene_.lights)),
+          empty_vao_(make_vertex_array()) {
+        camera_.azimuth = o.view.azimuth;
+        camera_.elevation = o.view.elevation;
+        GLFWwindow* w = window_.glfw();
+        glfwSetWindowUserPointer(w, &input_);
+        glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) {
+            static_cast<Input*>(glfwGetWindowUserPointer(win))->scroll += dy;
+        });
+        glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int) {
+            if (action == GLFW_PRESS || action == GLFW_REPEAT) static_cast<Input*>(glfwGetWindowUserPointer(win))->keys.push_back(key);
+        });
+        settings_.timed = true;  // the panel's and the title's breakdown
+        gui_ = std::make_unique<Gui>(w);
+    }
+    ~Viewer() { gui_.reset(); }  // the panel before the scene's GL objects and the window
+
+    ViewerResult run() {
+        if (!o_.script.empty()) {
+            ImGui::GetIO().ConfigFlags |= ImGuiConfigFlags_NoMouse;  // a script's pictures: no hover from the pointer
+            for (const ViewerAction& a : o_.script) {
+                if (closed()) break;
+                if (a.kind == ViewerAction::Kind::frames) {
+                    for (int i = 0; i < static_cast<int>(a.x) && !closed(); ++i) frame();
+                    continue;
+                }
+                apply(a);
+                frame();  // each change shows in the next frame
+            }
+            return result_;
+        }
+        while (!closed() && (o_.frames == 0 || result_.frames < o_.frames)) {
+            glfwPollEvents();
+            if (!handle_input()) break;
+            frame();
+        }
+        return result_;
+    }
+
+private:
+    static HairSceneDesc scene_desc(ViewerOptions& o) {
+        HairSceneDesc d = std::move(o.scene);
+        d.headless = false;
+        return d;
+    }
+
+    bool closed() const { return glfwWindowShouldClose(window_.glfw()); }
+
+    // One script action (no drawing).
+    void apply(const ViewerAction& a) {
+        using K = ViewerAction::Kind;
+        try {
+            switch (a.kind) {
+                case K::orbit:
+                    camera_.azimuth = glm::radians(a.x);
+                    camera_.elevation = glm::radians(a.y);
+                    break;
+                case K::zoom: camera_.zoom = std::clamp(camera_.zoom * a.x, kMinZoom, kMaxZoom); break;
+                case K::pan: camera_.pan += glm::dvec2(a.x, a.y); break;
+                case K::fit: fit(); break;
+                case K::set: settings_ = shell_settings_from_json(a.values, a.where, settings_); break;
+                case K::params: settings_ = read_shell_settings(a.path.string(), settings_); break;
+                case K::background: environment_ = a.on; break;
+                case K::exposure: exposure_ = static_cast<float>(a.x); break;
+                case K::screenshot: screenshot(a.path); break;
+                case K::capture: capture(a.path); break;
+                case K::panel: show_panel_ = a.on; break;
+                case K::frames: break;
+            }
+        } catch (const Error& e) {
+            throw Error(e.file(), e.place(), e.problem() + " (" + a.where + ")");
+        }
+    }
+
+    void fit() {
+        camera_.zoom = 1.0;
+        camera_.pan = glm::dvec2(0.0);
+    }
+
+    // Mouse and keys since the last frame; false: quit.
+    bool handle_input() {
+        GLFWwindow* w = window_.glfw();
+        const ImGuiIO& io = ImGui::GetIO();
+        if (show_panel_ && io.WantCaptureKeyboard) input_.keys.clear();  // typing into the panel
+        if (show_panel_ && io.WantCaptureMouse) {                          // using the panel
+            input_.scroll = 0;
+            dragging_ = false;
+            return true;
+        }
+        for (const int key : input_.keys) {
+            switch (key) {
+                case GLFW_KEY_ESCAPE:
+                case GLFW_KEY_Q: return false;
+                case GLFW_KEY_F: fit(); break;
+                case GLFW_KEY_B: environment_ = !environment_; break;
+                case GLFW_KEY_TAB: show_panel_ = !show_panel_; break;
+                case GLFW_KEY_EQUAL:
+                case GLFW_KEY_KP_ADD: exposure_ += kExposureStep; break;
+                case GLFW_KEY_MINUS:
+                case GLFW_KEY_KP_SUBTRACT: exposure_ -= kExposureStep; break;
+                case GLFW_KEY_S: screenshot_key(); break;
+                default: break;
+            }
+        }
+        input_.keys.clear();
+        if (input_.scroll != 0) {
+            camera_.zoom = std::clamp(camera_.zoom * std::pow(kZoomPerStep, input_.scroll), kMinZoom, kMaxZoom);
+            input_.scroll = 0;
+        }
+        double x, y;
+        glfwGetCursorPos(w, &x, &y);
+        const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+        const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        const bool panning = right || (left && shift), orbiting = left && !shift;
+        if (dragging_ && (panning || orbiting)) {
+            const double dx = x - last_x_, dy = y - last_y_;
+            if (orbiting) {
+                camera_.azimuth -= kDragRadiansPerPixel * dx;
+                camera_.elevation = std::clamp(camera_.elevation + kDragRadiansPerPixel * dy, -kMaxElevation, kMaxElevation);
+            } else {
+                int fb_w, fb_h;
+                glfwGetFramebufferSize(w, &fb_w, &fb_h);
+                camera_.pan += camera_.zoom * glm::dvec2(-dx, dy) / double(std::max(fb_h, 1));
+            }
+        }
+        dragging_ = panning || orbiting;
+        last_x_ = x;
+        last_y_ = y;
+        return true;
+    }
+
+    // The S key and the panel's button: a screenshot that, failing, says why and lets the viewer go on.
+    void screenshot_key() {
+        const std::filesystem::path p = o_.screenshot.empty()
+                                            ? std::filesystem::path("coif-view-" + std::to_string(++shots_) + ".png")
+                                            : o_.screenshot;
+        try {
+            screenshot(p);
+            message_ = "wrote " + p.string();
+            log_message(LogLevel::info, message_);
+        } catch (const Error& e) {
+            message_ = e.what();
+            log_message(LogLevel::warning, message_);
+        }
+    }
+
+    // The panel (Dear ImGui): the frame's figures, the view, and every parameter of `coif render --params`, made
+    // from its table (online/shells/shell_settings.h) with its units, ranges and help.
+    void panel(int width, int height) {
+        // At the window's right edge, over the environment rather than the hair (framed in the middle).
+        const ImVec2 display = ImGui::GetIO().DisplaySize;
+        ImGui::SetNextWindowPos(ImVec2(display.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+        ImGui::SetNextWindowSize(ImVec2(kPanelWidth, display.y - 16), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.8f);
+        ImGui::Begin("coif view (Tab hides)");
+        ImGui::PushItemWidth(-kPanelLabels);
+        const ShellTimings& t = scene_.renderer->timings();
+        if (result_.frames == 0) ImGui::Text("%dx%d  the first frame", width, height);
+        else  // the frame before this one, display included
+            ImGui::Text("%dx%d  %.0f ms (%.1f fps)%s", width, height, result_.last_frame_ms,
+                        1000.0 / std::max(result_.last_frame_ms, 1e-3), dragging_ ? "  half size" : "");
+        ImGui::Text("lighting %.0f ms, shells %.0f ms (resolve %.0f)", t.lighting_wall_ms, t.shells_wall_ms, t.resolve_wall_ms);
+        ImGui::SliderFloat("exposure (stops)", &exposure_, -10.0f, 10.0f, "%.2f");
+        ImGui::Checkbox("environment (B)", &environment_);
+        ImGui::SameLine();
+        if (ImGui::Button("frame (F)")) fit();
+        ImGui::SameLine();
+        if (ImGui::Button("shot (S)")) screenshot_key();
+        if (ImGui::CollapsingHeader("parameters (--params)", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ShellSettings edited = settings_;
+            bool changed = false;
+            for (const Param<ShellSettings>& p : shell_settings_table()) changed |= param_widget(p, edited);
+            if (changed) {
+                try {
+                    shading::validate(edited.hair, "the hair parameters");  // together a valid hair (e.g. β_TRT = 2 β_R)
+                    settings_ = edited;
+                    message_.clear();
+                } catch (const Error& e) {
+                    message_ = e.what();
+                }
+            }
+            ImGui::InputText("file", params_path_, sizeof params_path_);
+            if (ImGui::Button("save")) {
+                try {
+                    write_shell_settings(params_path_, settings_);
+                    message_ = std::string("saved ") + params_path_;
+                } catch (const Error& e) {
+                    message_ = e.what();
+                }
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("load")) {
+                try {
+                    settings_ = read_shell_settings(params_path_, settings_);
+                    message_ = std::string("loaded ") + params_path_;
+                } catch (const Error& e) {
+                    message_ = e.what();
+                }
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("start values")) settings_ = start_settings();
+        }
+        if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+        ImGui::PopItemWidth();
+        ImGui::End();
+    }
+
+    ShellSettings start_settings() const {
+        ShellSettings s = o_.settings;
+        s.timed = true;
+        return s;
+    }
+
+    Camera camera_at(int width, int height) const {
+        return camera_.camera(o_.view, scene_.frame_min, scene_.frame_max, width, height);
+    }
+
+    // Draws one frame: the hair over the background into a linear target (half size while dragging), then the
+    // display pass into the window.
+    void frame() {
+        const auto start = Clock::now();
+        GLFWwindow* w = window_.glfw();
+        int fb_w, fb_h;
+        glfwGetFramebufferSize(w, &fb_w, &fb_h);
+        if (fb_w <= 0 || fb_h <= 0) return;  // minimised
+        const int divisor = dragging_ ? kDragDivisor : 1;
+        const int width = std::max(1, fb_w / divisor), height = std::max(1, fb_h / divisor);
+        if (!target_ || target_width_ != width || target_height_ != height) make_target(width, height);
+        const Camera cam = camera_at(width, height);
+        ShellRenderer& r = *scene_.renderer;
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+        glViewport(0, 0, width, height);
+        const ShellSettings& s = settings_;
+        // A frame whose fragments overflowed the exact compositing's storage has holes; the storage has grown
+        // since, so it is drawn again (the first frame, a closer view).
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            if (environment_) {
+                draw_environment(cam, width, height);
+                FrameTarget t;
+                t.viewport = glm::ivec4(0, 0, width, height);
+                t.over = true;
+                r.draw_frame(cam.view(), cam.projection(), scene_.lights, s, t, {});
+            } else {
+                r.draw(cam, s);
+            }
+            if (s.compositing != Compositing::exact || r.fragment_list_stats().dropped == 0) break;
+        }
+        present(fb_w, fb_h);
+        if (show_panel_) draw_panel(width, height);
+        glfwSwapBuffers(w);
+        check_errors("viewer frame");
+        ++result_.frames;
+        result_.last_frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        const ShellTimings& t = r.timings();
+        char title[256];
+        std::snprintf(title, sizeof title, "coif view  %dx%d  %.0f ms (lighting %.0f, shells %.0f)  %s%s", width, height,
+                      result_.last_frame_ms, t.lighting_wall_ms, t.shells_wall_ms, environment_ ? "environment" : "background",
+                      divisor > 1 ? "  [half size while dragging]" : "");
+        glfwSetWindowTitle(w, title);
+    }
+
+    // The display pass: the linear frame → exposure, clip, sRGB, into the window's back buffer.
+    void present(int fb_w, int fb_h) {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fb_w, fb_h);
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        present_.use();
+        glBindTextureUnit(0, color_.id());
+        glUniform1i(present_.uniform("u_image"), 0);
+        glUniform2f(present_.uniform("u_size"), float(fb_w), float(fb_h));
+        glUniform1f(present_.uniform("u_exposure_scale"), std::exp2(exposure_));
+        glBindVertexArray(empty_vao_.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    void draw_panel(int width, int height) {
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        panel(width, height);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    }
+
+    void make_target(int width, int height) {
+        color_ = make_texture_2d(GL_RGBA16F, width, height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+        GLuint id = 0;
+        glCreateRenderbuffers(1, &id);
+        depth_ = Renderbuffer(id);
+        glNamedRenderbufferStorage(id, GL_DEPTH_COMPONENT32F, width, height);
+        glCreateFramebuffers(1, &id);
+        framebuffer_ = Framebuffer(id);
+        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, color_.id(), 0);
+        glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+        if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error::parameter("viewer", "its framebuffer is incomplete");
+        target_ = true;
+        target_width_ = width;
+        target_height_ = height;
+    }
+
+    // The environment's SRBF lights along every pixel's ray (shaders/gl/viewer_background.frag).
+    void draw_environment(const Camera& cam, int width, int height) {
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        background_.use();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights_.id());
+        glUniform1i(background_.uniform("u_light_count"), static_cast<int>(scene_.lights.size()));
+        const glm::mat4 inverse = glm::inverse(cam.projection() * cam.view());
+        glUniformMatrix4fv(background_.uniform("u_inverse_view_projection"), 1, GL_FALSE, &inverse[0][0]);
+        glUniform3fv(background_.uniform("u_eye"), 1, &cam.eye[0]);
+        glUniform4f(background_.uniform("u_viewport"), 0.0f, 0.0f, float(width), float(height));
+        glBindVertexArray(empty_vao_.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    // What `coif render` writes for this camera at the window's size and these parameters (same renderer, same
+    // render(): the same pixels).
+    void screenshot(const std::filesystem::path& path) {
+        int fb_w, fb_h;
+        glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+        ShellSettings s = settings_;
+        s.timed = false;
+        const Image image = scene_.renderer->render(camera_at(fb_w, fb_h), s);
+        WriteOptions wo;
+        wo.exposure = exposure_;
+        wo.description = "coif view: SATF shells, SRBF Marschner lighting; lights " + scene_.lights_label;
+        write_image(path, image, wo);
+        result_.written.push_back(path);
+    }
+
+    // The window's pixels as shown, sRGB bytes: decoded to linear so that the PNG writer's tone map (exposure 0)
+    // encodes them back to the same bytes.
+    void capture(const std::filesystem::path& path) {
+        int fb_w, fb_h;
+        glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+        if (!target_) frame();
+        std::vector<std::uint8_t> rgba(static_cast<std::size_t>(fb_w) * fb_h * 4);
+        present(fb_w, fb_h);  // the last frame shown, again into the back buffer, read before any swap
+        if (show_panel_ && ImGui::GetDrawData()) ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        glReadBuffer(GL_BACK);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        Image img(fb_w, fb_h, 4);
+        for (int y = 0; y < fb_h; ++y)
+            for (int x = 0; x < fb_w; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    const float v = rgba[(static_cast<std::size_t>(fb_h - 1 - y) * fb_w + x) * 4 + c] / 255.0f;
+                    img.at(x, y)[c] = c == 3 ? 1.0f : srgb_to_linear(v);
+                }
+        WriteOptions wo;
+        wo.description = "coif view: the window as shown";
+        write_image(path, img, wo);
+        result_.written.push_back(path);
+    }
+
+    ViewerOptions& o_;
+    ShellSettings settings_;
+    float exposure_;
+    bool environment_;
+    Window window_;  // before everything GL: its context is current while the rest is made and destroyed
+    std::unique_ptr<Gui> gui_;  // after the viewer's GLFW callbacks, which its backend chains to
+    bool show_panel_ = true;
+    std::string message_;        // the last refusal or failure, shown in the panel
+    char params_path_[512] = "params.json";
+    HairScene scene_;
+    Program background_, present_;
+    Buffer lights_;
+    VertexArray empty_vao_;
+    Texture color_;
+    Renderbuffer depth_;
+    Framebuffer framebuffer_;
+    bool target_ = false;
+    int target_width_ = 0, target_height_ = 0;
+    ViewerCamera camera_;
+    Input input_;
+    bool dragging_ = false;
+    double last_x_ = 0, last_y_ = 0;
+    int shots_ = 0;
+    ViewerResult result_;
 };
 
 }  // namespace
 
-ViewerResult run_viewer(const ViewerOptions& o) {
-    Window window(o.view.width, o.view.height, "coif view");
-    GLFWwindow* w = window.glfw();
-    StrandPreview preview(o.strands);
-    Orbit orbit{o.view.azimuth, o.view.elevation};
-    glfwSetWindowUserPointer(w, &orbit);
-    glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) {
-        auto* orb = static_cast<Orbit*>(glfwGetWindowUserPointer(win));
-        orb->distance_scale = std::clamp(orb->distance_scale * std::pow(kZoomPerStep, dy), kMinZoom, kMaxZoom);
-    });
-    std::unique_ptr<RenderTarget> target;
-    ViewerResult result;
-    for (; !glfwWindowShouldClose(w) && (o.frames == 0 || result.frames < o.frames); ++result.frames) {
-        glfwPollEvents();
-        if (glfwGetKey(w, GLFW_KEY_ESCAPE) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_Q) == GLFW_PRESS) break;
-        double x, y;
-        glfwGetCursorPos(w, &x, &y);
-        const bool down = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-        if (down && orbit.dragging) {
-            orbit.azimuth -= kDragRadiansPerPixel * (x - orbit.last_x);
-            orbit.elevation = std::clamp(orbit.elevation + kDragRadiansPerPixel * (y - orbit.last_y), -kMaxElevation,
-                                         kMaxElevation);
-        }
-        orbit.dragging = down;
-        orbit.last_x = x;
-        orbit.last_y = y;
-
-        int fb_w, fb_h;
-        glfwGetFramebufferSize(w, &fb_w, &fb_h);
-        if (fb_w <= 0 || fb_h <= 0) continue;  // minimised
-        OrbitView view = o.view;
-        view.width = fb_w;
-        view.height = fb_h;
-        view.azimuth = static_cast<float>(orbit.azimuth);
-        view.elevation = static_cast<float>(orbit.elevation);
-        Camera camera = view.around(o.frame_min, o.frame_max);
-        camera.eye = camera.target + float(orbit.distance_scale) * (camera.eye - camera.target);
-        camera.near_plane *= float(orbit.distance_scale);
-        camera.far_plane *= float(orbit.distance_scale);
-
-        if (!target || target->width() != fb_w || target->height() != fb_h)
-            target = std::make_unique<RenderTarget>(fb_w, fb_h, GL_RGBA16F, o.preview.samples);
-        target->bind();
-        glClearColor(o.preview.background.x, o.preview.background.y, o.preview.background.z, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        preview.draw(camera, o.preview);
-        // Show it: resolve the samples, then copy into the window (linear values; preview only).
-        glBlitNamedFramebuffer(target->resolve(), 0, 0, 0, fb_w, fb_h, 0, 0, fb_w, fb_h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        glfwSwapBuffers(w);
-    }
-    if (o.keep_last_frame && target) result.last_frame = target->read_back();
-    return result;
+ViewerResult run_viewer(ViewerOptions options) {
+    Viewer viewer(options);
+    return viewer.run();
 }
 
 }  // namespace coif::gl

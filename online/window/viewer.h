@@ -1,33 +1,56 @@
 #pragma once
-// The interactive viewer: a window (online/window/window.h) showing strands with the strand preview
-// (online/strand_preview.h) and an orbit camera. Drag with the left mouse button to orbit, scroll to zoom,
-// Esc or Q to quit. Its inputs are plain data; `coif view` parses them from options.
+// The interactive viewer, `coif view`: the SATF shell renderer (online/shell_renderer.h) in a window
+// (online/window/window.h), the scene built exactly as `coif render` builds it (online/scene/hair_scene.h: a style
+// cooked against the database, or a baked `.coif` asset, view-only), shown with coif render's PNG tone map
+// (shaders/display.glsl: exposure, clip, sRGB) over the environment's SRBF lights or the plain background.
+//
+// Mouse and keys: left drag orbits, right drag (or Shift + left drag) pans, the wheel zooms; F frames the hair
+// again, B switches the environment background, + and − change the exposure by a third of a stop, S writes a
+// screenshot (what `coif render` writes for this camera: --screenshot, else coif-view-N.png), Esc or Q quits.
+// While the camera is dragged the frame is drawn at half size and scaled up, so that it follows the mouse; it is
+// drawn at full size again when the mouse is let go. The window's title shows the frame time and its passes.
+// Scripts (online/window/viewer_script.h) replay the same actions without a person.
+#include <filesystem>
 #include <glm/glm.hpp>
 #include <optional>
+#include <vector>
 
 #include "models/core/camera.h"
-#include "models/core/image.h"
-#include "models/strands.h"
-#include "online/strand_preview.h"
+#include "online/scene/hair_scene.h"
+#include "online/shells/shell_settings.h"
+#include "online/window/viewer_script.h"
 
 namespace coif::gl {
 
+// The viewer's camera: an orbit around the framed box as coif render places it, then zoomed and panned.
+struct ViewerCamera {
+    double azimuth = 0, elevation = 0;  // radians, as OrbitView
+    double zoom = 1;                    // the eye's distance over the framing distance, 0.1 … 10
+    glm::dvec2 pan{0.0};                // the target moved right and up, in framed heights
+    // The camera for a `width` × `height` frame of the box; with zoom 1 and no pan, exactly coif render's.
+    Camera camera(const OrbitView& base, glm::vec3 box_min, glm::vec3 box_max, int width, int height) const;
+};
+
 struct ViewerOptions {
-    Strands strands;                           // what is drawn
-    glm::vec3 frame_min{0.0f}, frame_max{0.0f};  // the box the camera orbits (and frames at zoom 1)
-    OrbitView view;                            // the first frame's camera; width × height is the window's size
-    StrandPreviewSettings preview;
-    int frames = 0;                            // quit after this many frames; 0: when the window is closed
-    bool keep_last_frame = false;              // read the last frame back (ViewerResult::last_frame)
+    HairSceneDesc scene;      // the scene (its `headless` is ignored: the window's context draws it)
+    ShellSettings settings;   // the parameters to start from
+    OrbitView view;           // the first camera; width × height is the window's size
+    float exposure = 0;       // stops: the display and PNG screenshots
+    bool environment = true;  // the environment's lights as the background, else settings.background
+    std::vector<ViewerAction> script;  // replayed in order, then the viewer quits (online/window/viewer_script.h)
+    int frames = 0;                    // without a script: quit after this many frames (0: when closed)
+    std::filesystem::path screenshot;  // the S key's file (empty: coif-view-N.png in the working folder)
 };
 
 struct ViewerResult {
-    int frames = 0;                   // frames drawn
-    std::optional<Image> last_frame;  // linear RGBA, when asked for and a frame was drawn
+    int frames = 0;                               // frames drawn
+    double last_frame_ms = 0;                     // wall time of the last frame, display included
+    std::vector<std::filesystem::path> written;   // screenshots and captures, in order
 };
 
-// Opens the window and runs until Esc/Q, the window's closing or `frames` frames; throws coif::Error when no
-// window can be opened.
-ViewerResult run_viewer(const ViewerOptions& options);
+// Builds the scene, opens the window and runs until Esc/Q, the window's closing, `frames` frames or the script's
+// end; throws coif::Error when no window can be opened, the scene cannot be built, or an action fails (a file
+// that cannot be written: nothing partial is left).
+ViewerResult run_viewer(ViewerOptions options);
 
 }  // namespace coif::gl

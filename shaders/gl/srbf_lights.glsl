@@ -7,14 +7,7 @@
 
 #include "shaders/lighting/luts_gl.glsl"
 #include "shaders/lighting/srbf_shadowed.glsl"
-
-struct GpuLight {
-    vec4 direction_lambda;  // xyz towards the light (unit), w = λ_j
-    vec4 radiance;          // rgb = L_j
-};
-layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
-
-uniform int u_light_count;
+#include "shaders/gl/srbf_light_buffer.glsl"
 uniform HairParams u_hair;
 uniform LightingConfig u_config;
 uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT

@@ -1,0 +1,110 @@
+#include "online/window/viewer_script.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "online/shells/shell_settings.h"
+
+namespace coif::gl {
+namespace {
+
+double number(const nlohmann::json& v, const std::string& file, const std::string& place, double lo, double hi) {
+    if (!v.is_number()) throw Error(file, place, "expected a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi)
+        throw Error(file, place, "must be " + std::to_string(lo) + " … " + std::to_string(hi) + ", not " + v.dump());
+    return x;
+}
+
+std::filesystem::path image_path(const nlohmann::json& v, const std::string& file, const std::string& place, bool exr) {
+    if (!v.is_string() || v.get<std::string>().empty()) throw Error(file, place, "expected a file name");
+    std::filesystem::path p = v.get<std::string>();
+    std::string ext = p.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".png" && !(exr && ext == ".exr"))
+        throw Error(file, place, std::string("the image must be a .png") + (exr ? " or .exr" : "") + ", not '" + p.string() + "'");
+    return p;
+}
+
+}  // namespace
+
+std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    std::ifstream in(path);
+    if (!in) throw Error(file, "", "cannot open the script");
+    std::stringstream text;
+    text << in.rdbuf();
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(text.str());
+    } catch (const nlohmann::json::parse_error& e) {
+        throw Error(file, "byte " + std::to_string(e.byte), "not JSON");
+    }
+    if (!doc.is_array()) throw Error(file, "", "expected a JSON array of actions (coif view --help)");
+    if (doc.size() > 100000) throw Error(file, "", "more than 100000 actions");
+    std::vector<ViewerAction> actions;
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+        const std::string place = "action " + std::to_string(i + 1);
+        const nlohmann::json& a = doc[i];
+        if (!a.is_object() || a.size() != 1) throw Error(file, place, "expected an object with one key, e.g. {\"orbit\": [90, 10]}");
+        const std::string key = a.begin().key();
+        const nlohmann::json& v = a.begin().value();
+        const std::string at = place + " (" + key + ")";
+        ViewerAction act;
+        act.where = file + ": " + place;
+        using K = ViewerAction::Kind;
+        if (key == "orbit" || key == "pan") {
+            if (!v.is_array() || v.size() != 2) throw Error(file, at, "expected two numbers");
+            act.kind = key == "orbit" ? K::orbit : K::pan;
+            const double lim = key == "orbit" ? 3600.0 : 100.0;
+            act.x = number(v[0], file, at, -lim, lim);
+            act.y = number(v[1], file, at, key == "orbit" ? -89.0 : -lim, key == "orbit" ? 89.0 : lim);
+        } else if (key == "zoom") {
+            act.kind = K::zoom;
+            act.x = number(v, file, at, 0.1, 10.0);
+        } else if (key == "fit") {
+            act.kind = K::fit;
+            if (v != true) throw Error(file, at, "expected true");
+        } else if (key == "set") {
+            act.kind = K::set;
+            if (!v.is_object() || v.empty()) throw Error(file, at, "expected an object of parameters");
+            (void)shell_settings_from_json(v, file + ": " + at);  // refused here, before anything is drawn
+            act.values = v;
+        } else if (key == "params") {
+            act.kind = K::params;
+            if (!v.is_string()) throw Error(file, at, "expected a parameters file name");
+            act.path = v.get<std::string>();
+            try {
+                (void)read_shell_settings(act.path.string());
+            } catch (const Error& e) {
+                throw Error(file, at, e.what());
+            }
+        } else if (key == "background" || key == "panel") {
+            act.kind = key == "background" ? K::background : K::panel;
+            if (!v.is_boolean()) throw Error(file, at, "expected true or false");
+            act.on = v.get<bool>();
+        } else if (key == "exposure") {
+            act.kind = K::exposure;
+            act.x = number(v, file, at, -20.0, 20.0);
+        } else if (key == "frames") {
+            act.kind = K::frames;
+            act.x = number(v, file, at, 1.0, 10000.0);
+            if (act.x != std::floor(act.x)) throw Error(file, at, "expected a whole number");
+        } else if (key == "screenshot") {
+            act.kind = K::screenshot;
+            act.path = image_path(v, file, at, true);
+        } else if (key == "capture") {
+            act.kind = K::capture;
+            act.path = image_path(v, file, at, false);
+        } else {
+            throw Error(file, place, "unknown action '" + key +
+                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, frames, screenshot, capture)");
+        }
+        actions.push_back(std::move(act));
+    }
+    return actions;
+}
+
+}  // namespace coif::gl

@@ -1,0 +1,175 @@
+// coif view (online/window/viewer.h) driven by scripts under a virtual X server: it draws `coif render`'s scene, a
+// parameter change shows as `coif render --params` draws it, the window shows coif render's PNG tone map, an asset
+// is viewable, and bad scripts are refused before the window opens, with nothing written.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "models/core/image.h"
+#include "tests/common/run.h"
+
+namespace coif {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using test::run_coif;
+
+#ifdef COIF_XVFB_RUN
+const std::string kWindow = std::string("'") + COIF_XVFB_RUN + "' -a -s '-screen 0 1024x768x24'";
+#define REQUIRE_WINDOW()
+#else
+const std::string kWindow;
+#define REQUIRE_WINDOW() GTEST_SKIP() << "xvfb-run is missing: the viewer needs a (virtual) display; install xvfb"
+#endif
+
+void write_text(const fs::path& p, const std::string& text) {
+    std::ofstream out(p);
+    out << text;
+}
+
+// The size of every image here: small, so that the suite stays fast.
+const std::string kSize = " --width 160 --height 120 ";
+
+double max_difference(const Image& a, const Image& b) {
+    EXPECT_EQ(a.pixels.size(), b.pixels.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < std::min(a.pixels.size(), b.pixels.size()); ++i)
+        worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])));
+    return worst;
+}
+
+TEST(Viewer, ScriptedParametersAndCameraDrawAsCoifRenderDoes) {
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-script");
+    const fs::path asset = dir / "hair.coif";
+    ASSERT_EQ(run_coif("bake @default -o '" + asset.string() + "'").exit_code, 0);
+    write_text(dir / "look.json", R"({"sigma_a": [0.6, 0.8, 1.2], "alpha_R_deg": -5})");
+    const std::string d = dir.string() + "/";
+    write_text(dir / "script.json", R"([{"frames": 1}, {"panel": false},
+        {"screenshot": ")" + d + R"(a.exr"},
+        {"params": ")" + d + R"(look.json"}, {"orbit": [120, 25]},
+        {"screenshot": ")" + d + R"(b.exr"},
+        {"capture": ")" + d + R"(shown_environment.png"},
+        {"background": false}, {"capture": ")" + d + R"(shown.png"},
+        {"zoom": 0.5}, {"pan": [0.2, 0.0]}, {"capture": ")" + d + R"(zoomed.png"},
+        {"fit": true}, {"capture": ")" + d + R"(fitted.png"}])");
+    // The asset, view-only: drawn from the file, as coif render draws the style it was baked from.
+    auto r = run_coif("view --style '" + asset.string() + "'" + kSize + "--script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_coif("render --samples 1" + kSize + "-o '" + d + "ra.exr'").exit_code, 0);
+    r = run_coif("render --samples 1 --azimuth 120 --elevation 25 --params '" + d + "look.json'" + kSize + "-o '" + d + "rb.exr'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // No tolerance: the viewer's screenshot is coif render's image (the same scene, renderer and render()).
+    const Image a = read_image(dir / "a.exr"), b = read_image(dir / "b.exr");
+    EXPECT_EQ(a.pixels, read_image(dir / "ra.exr").pixels);
+    EXPECT_EQ(b.pixels, read_image(dir / "rb.exr").pixels);
+    EXPECT_GT(max_difference(a, b), 0.05) << "the parameters and the camera changed the image";
+
+    // What the window shows is coif render's PNG tone map of the frame: the PNG of the same view, within one step of
+    // 8 bits (the window's frame is a half-float target; the PNG writer rounds the same values).
+    const Image shown = read_image(dir / "shown.png"), shown_env = read_image(dir / "shown_environment.png");
+    WriteOptions wo;
+    write_image(dir / "rb.png", read_image(dir / "rb.exr"), wo);
+    const Image expected = read_image(dir / "rb.png");
+    ASSERT_EQ(shown.width, expected.width);
+    int off = 0;
+    for (int y = 0; y < shown.height; ++y)
+        for (int x = 0; x < shown.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float s = tone_map_srgb(shown.at(x, y)[c], 1.0f), e = tone_map_srgb(expected.at(x, y)[c], 1.0f);
+                off += std::abs(s - e) > 1.5f / 255.0f;
+            }
+    EXPECT_EQ(off, 0) << "channels shown unlike the PNG";
+    // The environment behind the hair: the corners differ from the plain background; the hair's pixels do not.
+    EXPECT_GT(max_difference(shown, shown_env), 0.05);
+    EXPECT_NEAR(shown.at(80, 60)[0], shown_env.at(80, 60)[0], 2e-2f) << "the hair in the middle covers the background";
+    // Zoomed and panned, then framed again: back to the same picture.
+    EXPECT_GT(max_difference(read_image(dir / "zoomed.png"), shown), 0.05);
+    EXPECT_EQ(read_image(dir / "fitted.png").pixels, shown.pixels);
+    fs::remove_all(dir);
+}
+
+TEST(Viewer, ThePanelCoversItsSideOnly) {
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-panel");
+    const std::string d = dir.string() + "/";
+    write_text(dir / "script.json", R"([{"frames": 1}, {"capture": ")" + d + R"(with.png"}, {"panel": false},
+        {"capture": ")" + d + R"(without.png"}])");
+    const auto r = run_coif("view --width 480 --height 160 --script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // The panel (300 pixels wide at the window's right edge) leaves the left quarter as it was.
+    const Image with = read_image(dir / "with.png"), without = read_image(dir / "without.png");
+    double left = 0, right = 0;
+    for (int y = 0; y < with.height; ++y)
+        for (int x = 0; x < with.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double& side = x < with.width / 4 ? left : right;
+                side = std::max(side, double(std::abs(with.at(x, y)[c] - without.at(x, y)[c])));
+            }
+    EXPECT_EQ(left, 0.0);
+    EXPECT_GT(right, 0.05);
+    fs::remove_all(dir);
+}
+
+TEST(Viewer, FramesThenScreenshotShowsTheHair) {
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-frames");
+    const fs::path shot = dir / "shot.png";
+    const auto r = run_coif("view --frames 2" + kSize + "--screenshot '" + shot.string() + "'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image img = read_image(shot);
+    // The hair covers a good part of the frame: pixels unlike the corner's background.
+    int hair = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            hair += std::abs(img.at(x, y)[0] - img.at(0, 0)[0]) + std::abs(img.at(x, y)[2] - img.at(0, 0)[2]) > 0.02f;
+    EXPECT_GT(hair, img.width * img.height / 20);
+    fs::remove_all(dir);
+}
+
+TEST(Viewer, BadScriptsAreRefusedBeforeTheWindowOpens) {
+    // No display needed: the script is checked first, and nothing is written.
+    const fs::path dir = test::scratch_dir("viewer-bad");
+    const auto refused = [&](const std::string& name, const std::string& actions, const std::string& why) {
+        const fs::path script = dir / (name + ".json");
+        write_text(script, actions);
+        const auto r = run_coif("view --script '" + script.string() + "'");
+        EXPECT_EQ(r.exit_code, 1) << name << ": " << r.err;
+        EXPECT_THAT(r.err, HasSubstr(script.string())) << name;
+        EXPECT_THAT(r.err, HasSubstr(why)) << name;
+        EXPECT_THAT(r.err, ::testing::Not(HasSubstr("display"))) << name << ": refused before the window";
+    };
+    const std::string out = (dir / "x.png").string();
+    refused("unknown", R"([{"frames": 1}, {"paint": [1, 2]}])", "action 2: unknown action 'paint'");
+    refused("range", R"([{"orbit": [10, 95]}])", "action 1 (orbit)");
+    refused("zoom", R"([{"zoom": 0}])", "action 1 (zoom)");
+    refused("param", R"([{"set": {"sigma_a": [1, -2, 3]}}])", "sigma_a");
+    refused("key", R"([{"set": {"no_such_key": 1}}])", "no_such_key");
+    refused("image", R"([{"screenshot": "a.jpg"}])", ".png or .exr");
+    refused("shape", R"({"orbit": [1, 2]})", "JSON array");
+    refused("json", R"([{"frames": 1})", "not JSON");
+    refused("frames", R"([{"frames": 2.5}])", "whole number");
+    refused("params", R"([{"params": "/no/such/look.json"}])", "/no/such/look.json");
+    EXPECT_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+}
+
+TEST(Viewer, AnUnwritableScreenshotIsAnErrorAndLeavesNoFile) {
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-unwritable");
+    write_text(dir / "script.json", R"([{"screenshot": "/proc/coif-cannot-write-here.png"}])");
+    const auto r = run_coif("view" + kSize + "--script '" + (dir / "script.json").string() + "'", kWindow);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("/proc/coif-cannot-write-here.png"));
+    EXPECT_THAT(r.err, HasSubstr("action 1"));
+    EXPECT_FALSE(fs::exists("/proc/coif-cannot-write-here.png"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace coif
