@@ -91,6 +91,11 @@ std::vector<SrbfLight> rotate_srbf_lights_y(std::span<const SrbfLight> lights, f
     return rotate_srbf_lights(lights, rotation);
 }
 
+float srbf_rotation_radians(double degrees, const std::string& place) {
+    if (!std::isfinite(degrees)) throw Error::parameter(place, "must be a finite number of degrees");
+    return static_cast<float>(glm::radians(std::fmod(degrees, 360.0)));
+}
+
 nlohmann::ordered_json srbf_fit_record_json(const SrbfFitRecord& f) {
     return {{"lights", f.lights},
             {"seed", f.seed},

@@ -85,6 +85,9 @@ glm::dvec3 srbf_lights_energy(std::span<const SrbfLight> lights);
 std::vector<SrbfLight> rotate_srbf_lights(std::span<const SrbfLight> lights, const glm::mat3& rotation);
 // The usual case: turn the environment by `angle` radians about +y (right-handed: +x toward −z).
 std::vector<SrbfLight> rotate_srbf_lights_y(std::span<const SrbfLight> lights, float angle);
+// A turn given in degrees (`--rotate-lights`, the viewer's slider) as the radians rotate_srbf_lights_y takes: the
+// same number gives the same lights everywhere. Throws coif::Error::parameter(place) for a non-finite value.
+float srbf_rotation_radians(double degrees, const std::string& place = "light rotation");
 
 // JSON text of a light set (see the header comment), and the file forms (write is atomic).
 std::string srbf_lights_to_json(const SrbfLightSet& set);

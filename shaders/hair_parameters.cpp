@@ -128,6 +128,13 @@ void validate(const HairParameters& hair, const std::string& place) {
     if (!(hair.d_f >= 0.0f && hair.d_f <= 1.0f)) throw Error::parameter(place, "d_f must be in [0, 1]");
 }
 
+glm::vec3 sigma_a_from_melanin(double eumelanin, double pheomelanin) {
+    if (!(eumelanin >= 0.0 && eumelanin < 1e3) || !(pheomelanin >= 0.0 && pheomelanin < 1e3))
+        throw Error::parameter("melanin", "concentrations must be finite and ≥ 0");
+    const glm::dvec3 eu(0.419, 0.697, 1.37), pheo(0.187, 0.4, 1.05);
+    return glm::vec3(eumelanin * eu + pheomelanin * pheo);
+}
+
 const ParamTable<HairParameters>& hair_parameter_table() {
     static const Table table = make_table();
     return table;

@@ -87,6 +87,12 @@ inline constexpr std::array<LightingConfigField, 5> kLightingConfigFields = {{
 // The hair keys of a parameters file (see the header comment), in the order they are applied.
 const ParamTable<HairParameters>& hair_parameter_table();
 
+// σa of a fibre with these melanin concentrations (Chiang et al. 2016 §4.2, as pbrt-v4's SigmaAFromConcentration):
+// ce · (0.419, 0.697, 1.37) + cp · (0.187, 0.4, 1.05). Their σa is per unit fibre radius (a path through the fibre's
+// centre is 2 radii long), as coif's is, so no conversion is needed. Natural hair spans roughly ce 0 … 8 (blond 0.3,
+// brown 1.3, black 8) and cp 0 … 3 (red hair's). Throws coif::Error::parameter for a negative or non-finite value.
+glm::vec3 sigma_a_from_melanin(double eumelanin, double pheomelanin);
+
 // A shorthand option (`coif reference --alpha-r 5`) or any single key: `value` read as the file's `key`
 // would be, with the same links; coif::Error(place) if the key is not a hair key or the value is bad.
 void set_hair_parameter(HairParameters& hair, const std::string& key, const nlohmann::json& value, const std::string& place);

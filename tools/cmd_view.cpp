@@ -1,6 +1,7 @@
 // coif view — the interactive viewer (online/window/viewer.h): the shell renderer of `coif render` in a window, the
 // same scene from the same options, and scripts of viewer actions (online/window/viewer_script.h).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "models/core/error.h"
@@ -17,7 +18,7 @@ struct ViewOptions {
     int frames = 0;
     float exposure = 0.0f;
     bool no_environment = false;
-    std::string screenshot, script;
+    std::string screenshot, script, maps;
 };
 
 void add_view(CLI::App& root) {
@@ -32,10 +33,13 @@ void add_view(CLI::App& root) {
         "without one.\n"
         "Left drag orbits, right drag (or Shift + left drag) pans, the wheel zooms, F frames the hair again, + and -\n"
         "change the exposure, S writes a screenshot (the image `coif render` writes for this camera), Esc or Q quits.\n"
-        "While the camera is dragged the frame is drawn at half size. The title shows the frame time and its passes.\n"
+        "While the camera is dragged the frame is drawn at half size. Tab hides the panel: the frame time and its\n"
+        "passes, every --params key (saved to and loaded from that file), the hair colour as melanin, the exposure,\n"
+        "and the environment (its turn, and a map of --maps fitted with N SRBF lights while the viewer goes on).\n"
         "--script FILE replays viewer actions instead of a person (a JSON array; each action is one object):\n"
         "  {\"orbit\": [AZ, EL]} {\"zoom\": F} {\"pan\": [X, Y]} {\"fit\": true} {\"set\": {PARAMS}} {\"params\": FILE}\n"
-        "  {\"background\": true|false} {\"exposure\": STOPS} {\"frames\": N} {\"screenshot\": FILE} {\"capture\": FILE}\n"
+        "  {\"background\": true|false} {\"panel\": true|false} {\"exposure\": STOPS} {\"rotate_lights\": DEG}\n"
+        "  {\"env\": FILE} {\"env\": {\"file\": MAP, \"lights\": N}} {\"frames\": N} {\"screenshot\": FILE} {\"capture\": FILE}\n"
         "A frame is drawn after each action, and the viewer quits after the last. The whole script is checked first:\n"
         "an unknown action or a value out of range is refused before the window opens.");
     o->scene.add_to(view);
@@ -48,6 +52,9 @@ void add_view(CLI::App& root) {
                      "The image the S key writes (.png/.exr; default coif-view-N.png); without a script, also written "
                      "when the viewer quits after --frames");
     view->add_option("--script", o->script, "Replay the viewer actions of this JSON file, then quit (see above)");
+    view->add_option("--maps", o->maps,
+                     "Folder of environment maps (.exr, .hdr) the panel offers to fit and light with; default: --env's "
+                     "folder, else ../shared/data when present");
     coif::cli::examples(view, "  coif view\n  coif view --style hair.coif\n"
                               "  coif view --env ../shared/data/blender_studiolight_city.exr --params red.json\n"
                               "  xvfb-run -a coif view --frames 3 --screenshot shot.png\n"
@@ -55,9 +62,23 @@ void add_view(CLI::App& root) {
     view->callback([o] {
         // Everything that can be refused is read before the window opens.
         coif::gl::ViewerOptions vo;
+        if (!o->scene.strands.empty())
+            throw coif::Error::parameter("option --strands", "coif view draws a style's shells; `coif render --strands` draws strands");
         if (!o->script.empty()) vo.script = coif::gl::read_viewer_script(o->script);
-        coif::cli::SceneInputs inputs = o->shell.read_inputs(o->scene);
+        // The lights as read: the viewer turns them (live, --rotate-lights to start with).
+        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->shell.env);
+        vo.rotate_lights_deg = o->shell.rotate_lights_deg;
+        (void)coif::cli::lights_rotation(vo.rotate_lights_deg);  // refused now if not finite
         vo.settings = o->shell.settings(inputs);
+        namespace fs = std::filesystem;
+        if (!o->maps.empty()) {
+            if (!fs::is_directory(o->maps)) throw coif::Error(o->maps, "", "not a folder (option --maps)");
+            vo.maps_folder = o->maps;
+        } else if (!o->shell.env.empty()) {
+            vo.maps_folder = fs::absolute(o->shell.env).parent_path();
+        } else if (fs::is_directory("../shared/data")) {
+            vo.maps_folder = "../shared/data";
+        }
         const std::optional<coif::AbsorptionMap> absorption = o->shell.absorption_map(inputs);
         vo.scene = coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->shell.db, o->shell.lighting_rows,
                                               absorption ? &*absorption : nullptr);

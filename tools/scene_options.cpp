@@ -27,10 +27,7 @@ void add_rotate_lights_option(CLI::App* app, double& degrees) {
                     "number gives the same lighting in coif render, coif reference and coif env fit --rotate");
 }
 
-float lights_rotation(double degrees) {
-    if (!std::isfinite(degrees)) throw Error::parameter("option --rotate-lights", "must be a finite number of degrees");
-    return static_cast<float>(radians(std::fmod(degrees, 360.0)));
-}
+float lights_rotation(double degrees) { return srbf_rotation_radians(degrees, "option --rotate-lights"); }
 
 glm::vec3 background_color(const std::vector<float>& v) {
     if (v.empty()) return kDefaultBackground;

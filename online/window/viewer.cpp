@@ -5,7 +5,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <future>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -14,6 +16,9 @@
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/core/log.h"
+#include "offline/envmap.h"
+#include "offline/srbf_fit.h"
+#include "offline/srbf_lights.h"
 #include "online/gl.h"
 #include "online/lighting_uniforms.h"
 #include "online/shell_renderer.h"
@@ -61,6 +66,25 @@ constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 struct Input {
     double scroll = 0;                 // wheel steps since the last frame
     std::vector<int> keys;             // keys pressed since the last frame
+};
+
+// An environment's SRBF lights: a lights JSON as written by `coif env fit`, else a map fitted with `count` lights
+// exactly as `coif render --env MAP` fits 40 (SrbfFitSettings' defaults), reporting each solver iteration.
+std::vector<SrbfLight> environment_lights(const std::filesystem::path& file, int count, std::atomic<int>* iteration) {
+    if (file.extension() == ".json") return read_srbf_lights(file).lights;
+    SrbfFitSettings fs;
+    fs.lights = count;
+    return fit_srbf_lights(load_envmap(file), fs, [iteration](int i, int) {
+               if (iteration) *iteration = i;
+           }).lights;
+}
+
+// A fit running beside the viewer (the panel's "fit"): the frames go on, and its lights swap in when done.
+struct LightsJob {
+    std::future<std::vector<SrbfLight>> lights;
+    std::shared_ptr<std::atomic<int>> iteration = std::make_shared<std::atomic<int>>(0);
+    std::string label;
+    Clock::time_point start = Clock::now();
 };
 
 // Dear ImGui in the window: its context and backends, made after the viewer's own GLFW callbacks (which the
@@ -163,6 +187,15 @@ public:
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
         camera_.elevation = o.view.elevation;
+        rotation_deg_ = o.rotate_lights_deg;
+        unrotated_ = scene_.lights;
+        environment_label_ = scene_.lights_label;
+        set_lights();
+        std::error_code ec;
+        if (!o.maps_folder.empty())
+            for (const auto& e : std::filesystem::directory_iterator(o.maps_folder, ec))
+                if (e.path().extension() == ".exr" || e.path().extension() == ".hdr") maps_.push_back(e.path().filename().string());
+        std::sort(maps_.begin(), maps_.end());
         GLFWwindow* w = window_.glfw();
         glfwSetWindowUserPointer(w, &input_);
         glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) {
@@ -226,6 +259,15 @@ private:
                 case K::screenshot: screenshot(a.path); break;
                 case K::capture: capture(a.path); break;
                 case K::panel: show_panel_ = a.on; break;
+                case K::rotate_lights:
+                    rotation_deg_ = a.x;
+                    set_lights();
+                    break;
+                case K::env:  // a script waits for the fit
+                    unrotated_ = environment_lights(a.path, a.lights, nullptr);
+                    environment_label_ = a.path.string();
+                    set_lights();
+                    break;
                 case K::frames: break;
             }
         } catch (const Error& e) {
@@ -291,6 +333,70 @@ private:
         return true;
     }
 
+    // The lights drawn: the environment's, turned by rotation_deg_; the shadows follow (rerun on the next frame).
+    void set_lights() {
+        scene_.lights = rotate_srbf_lights_y(unrotated_, srbf_rotation_radians(rotation_deg_));
+        scene_.renderer->set_lights(scene_.lights);
+        lights_ = make_lights_buffer(scene_.lights);
+    }
+
+    // A finished fit swaps its lights in; a failed one says why.
+    void poll_fit() {
+        if (!fit_ || fit_->lights.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+        try {
+            unrotated_ = fit_->lights.get();
+            environment_label_ = fit_->label;
+            set_lights();
+            message_ = "fitted " + fit_->label;
+        } catch (const Error& e) {
+            message_ = e.what();
+        }
+        fit_.reset();
+    }
+
+    void start_fit(const std::filesystem::path& map, int count) {
+        fit_.emplace();
+        fit_->label = map.filename().string() + " (" + std::to_string(count) + " SRBF lights)";
+        std::atomic<int>* iteration = fit_->iteration.get();
+        fit_->lights = std::async(std::launch::async, [map, count, iteration, keep = fit_->iteration] {
+            return environment_lights(map, count, iteration);
+        });
+    }
+
+    // The panel's environment: the lights' turn, and a map of maps_folder fitted with a chosen count.
+    void environment_panel() {
+        if (!ImGui::CollapsingHeader("environment", ImGuiTreeNodeFlags_DefaultOpen)) return;
+        ImGui::TextWrapped("%s", environment_label_.c_str());
+        float turn = static_cast<float>(rotation_deg_);
+        if (ImGui::SliderFloat("turn (deg)", &turn, -180.0f, 180.0f, "%.0f")) {
+            rotation_deg_ = turn;
+            set_lights();
+        }
+        if (maps_.empty()) return;
+        std::vector<const char*> names;
+        for (const auto& m : maps_) names.push_back(m.c_str());
+        ImGui::Combo("map", &map_choice_, names.data(), static_cast<int>(names.size()));
+        ImGui::SliderInt("SRBF lights", &fit_count_, 1, 200);
+        if (fit_) {
+            const double seconds = std::chrono::duration<double>(Clock::now() - fit_->start).count();
+            const float done = static_cast<float>(*fit_->iteration) / float(SrbfFitSettings{}.max_iterations);
+            char text[64];
+            std::snprintf(text, sizeof text, "fitting: iteration %d, %.0f s", fit_->iteration->load(), seconds);
+            ImGui::ProgressBar(std::min(done, 1.0f), ImVec2(-1, 0), text);
+        } else if (ImGui::Button("fit and light with it")) {
+            start_fit(o_.maps_folder / maps_[static_cast<std::size_t>(map_choice_)], fit_count_);
+        }
+    }
+
+    // The hair's colour as melanin concentrations (Chiang et al. 2016; shaders/hair_parameters.h): sets sigma_a.
+    void colour_panel() {
+        if (!ImGui::CollapsingHeader("hair colour (melanin)")) return;
+        bool changed = ImGui::SliderFloat("eumelanin", &eumelanin_, 0.0f, 8.0f, "%.2f");
+        changed |= ImGui::SliderFloat("pheomelanin", &pheomelanin_, 0.0f, 3.0f, "%.2f");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("blond ≈ 0.3, brown ≈ 1.3, black ≈ 8 eumelanin; red hair adds pheomelanin");
+        if (changed) settings_.hair.fibre.sigma_a = shading::sigma_a_from_melanin(eumelanin_, pheomelanin_);
+    }
+
     // The S key and the panel's button: a screenshot that, failing, says why and lets the viewer go on.
     void screenshot_key() {
         const std::filesystem::path p = o_.screenshot.empty()
@@ -328,6 +434,8 @@ private:
         if (ImGui::Button("frame (F)")) fit();
         ImGui::SameLine();
         if (ImGui::Button("shot (S)")) screenshot_key();
+        environment_panel();
+        colour_panel();
         if (ImGui::CollapsingHeader("parameters (--params)", ImGuiTreeNodeFlags_DefaultOpen)) {
             ShellSettings edited = settings_;
             bool changed = false;
@@ -381,6 +489,7 @@ private:
     // display pass into the window.
     void frame() {
         const auto start = Clock::now();
+        poll_fit();
         GLFWwindow* w = window_.glfw();
         int fb_w, fb_h;
         glfwGetFramebufferSize(w, &fb_w, &fb_h);
@@ -528,6 +637,13 @@ private:
     bool show_panel_ = true;
     std::string message_;        // the last refusal or failure, shown in the panel
     char params_path_[512] = "params.json";
+    double rotation_deg_ = 0;
+    std::vector<SrbfLight> unrotated_;  // the environment's lights before the turn
+    std::string environment_label_;
+    std::vector<std::string> maps_;     // the maps in maps_folder
+    int map_choice_ = 0, fit_count_ = 40;
+    std::optional<LightsJob> fit_;
+    float eumelanin_ = 1.3f, pheomelanin_ = 0.0f;
     HairScene scene_;
     Program background_, present_;
     Buffer lights_;

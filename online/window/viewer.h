@@ -6,7 +6,10 @@
 //
 // Mouse and keys: left drag orbits, right drag (or Shift + left drag) pans, the wheel zooms; F frames the hair
 // again, B switches the environment background, + and − change the exposure by a third of a stop, S writes a
-// screenshot (what `coif render` writes for this camera: --screenshot, else coif-view-N.png), Esc or Q quits.
+// screenshot (what `coif render` writes for this camera: --screenshot, else coif-view-N.png), Tab hides the panel,
+// Esc or Q quits. The panel (Dear ImGui) edits every parameter of `coif render --params` (saved to and loaded from
+// that file), the hair's colour as melanin concentrations, the exposure, and the environment: its turn, and a map
+// from `maps_folder` fitted with a chosen number of SRBF lights in the background while the viewer goes on.
 // While the camera is dragged the frame is drawn at half size and scaled up, so that it follows the mouse; it is
 // drawn at full size again when the mouse is let go. The window's title shows the frame time and its passes.
 // Scripts (online/window/viewer_script.h) replay the same actions without a person.
@@ -32,7 +35,10 @@ struct ViewerCamera {
 };
 
 struct ViewerOptions {
-    HairSceneDesc scene;      // the scene (its `headless` is ignored: the window's context draws it)
+    // The scene (its `headless` is ignored: the window's context draws it); its lights as read, before the turn.
+    HairSceneDesc scene;
+    double rotate_lights_deg = 0;        // the environment turned about +y (coif render --rotate-lights)
+    std::filesystem::path maps_folder;   // where the panel lists environment maps (.exr, .hdr); empty: none
     ShellSettings settings;   // the parameters to start from
     OrbitView view;           // the first camera; width × height is the window's size
     float exposure = 0;       // stops: the display and PNG screenshots

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "offline/srbf_fit.h"
 #include "online/shells/shell_settings.h"
 
 namespace coif::gl {
@@ -88,6 +89,21 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
         } else if (key == "exposure") {
             act.kind = K::exposure;
             act.x = number(v, file, at, -20.0, 20.0);
+        } else if (key == "rotate_lights") {
+            act.kind = K::rotate_lights;
+            act.x = number(v, file, at, -3600.0, 3600.0);
+        } else if (key == "env") {
+            act.kind = K::env;
+            const nlohmann::json* f = &v;
+            if (v.is_object()) {
+                if (!v.contains("file") || v.size() > 2 || (v.size() == 2 && !v.contains("lights")))
+                    throw Error(file, at, "expected {\"file\": NAME, \"lights\": N}");
+                f = &v["file"];
+                if (v.contains("lights")) act.lights = static_cast<int>(number(v["lights"], file, at + "/lights", 1, kMaxSrbfLights));
+            }
+            if (!f->is_string() || f->get<std::string>().empty()) throw Error(file, at, "expected a lights JSON or a map file name");
+            act.path = f->get<std::string>();
+            if (!std::filesystem::is_regular_file(act.path)) throw Error(file, at, "no such file: " + act.path.string());
         } else if (key == "frames") {
             act.kind = K::frames;
             act.x = number(v, file, at, 1.0, 10000.0);
@@ -100,7 +116,7 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
             act.path = image_path(v, file, at, false);
         } else {
             throw Error(file, place, "unknown action '" + key +
-                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, frames, screenshot, capture)");
+                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, frames, screenshot, capture)");
         }
         actions.push_back(std::move(act));
     }

@@ -13,6 +13,9 @@
 //   {"params": "FILE.json"}                 parameters read from a file, as coif render --params reads it
 //   {"background": true|false}              the environment's lights behind the hair, or the plain background
 //   {"exposure": STOPS}                     the display's and the PNG screenshots' exposure
+//   {"rotate_lights": DEG}                  the environment turned about +y, as coif render --rotate-lights
+//   {"env": "FILE"}                         the environment: SRBF lights JSON, or a map fitted with 40 lights
+//   {"env": {"file": "FILE", "lights": N}}  a map fitted with N lights (1 … 1024), as `coif env fit --lights N`
 //   {"frames": N}                           draw N more frames (1 … 10000) with nothing changed
 //   {"screenshot": "FILE.png|.exr"}         write what `coif render` writes for this camera and these parameters
 //   {"capture": "FILE.png"}                 write the window's pixels as shown, the panel included when shown
@@ -25,12 +28,13 @@
 namespace coif::gl {
 
 struct ViewerAction {
-    enum class Kind { orbit, zoom, pan, fit, set, params, background, panel, exposure, frames, screenshot, capture };
+    enum class Kind { orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, frames, screenshot, capture };
     Kind kind = Kind::frames;
-    double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), frames (x)
+    double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), rotate_lights (x), frames (x)
+    int lights = 40;                // env: SRBF lights fitted to a map
     bool on = false;                // background, panel
     nlohmann::json values;          // set: the parameters' keys and values
-    std::filesystem::path path;     // params, screenshot, capture
+    std::filesystem::path path;     // params, env, screenshot, capture
     std::string where;              // "FILE: action N" for messages
 };
 

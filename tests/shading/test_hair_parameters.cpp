@@ -211,5 +211,21 @@ TEST(HairParameters, ValidateRefusesABadLobeSetOrDf) {
     EXPECT_THROW(validate(h), Error);
 }
 
+TEST(HairParameters, MelaninGivesChiangsAbsorption) {
+    // pbrt-v4's brown (ce 1.3) and a red mix; the sum is linear in both concentrations.
+    const glm::vec3 brown = sigma_a_from_melanin(1.3, 0.0);
+    EXPECT_NEAR(brown.r, 0.5447, 1e-4);
+    EXPECT_NEAR(brown.g, 0.9061, 1e-4);
+    EXPECT_NEAR(brown.b, 1.781, 1e-4);
+    const glm::vec3 red = sigma_a_from_melanin(0.0, 2.0);
+    EXPECT_NEAR(red.r, 0.374, 1e-6);
+    EXPECT_NEAR(red.b, 2.1, 1e-6);
+    const glm::vec3 both = sigma_a_from_melanin(1.3, 2.0);
+    EXPECT_NEAR(both.g, brown.g + red.g, 1e-6);
+    EXPECT_EQ(sigma_a_from_melanin(0.0, 0.0), glm::vec3(0.0f));
+    EXPECT_THROW((void)sigma_a_from_melanin(-0.1, 0.0), Error);
+    EXPECT_THROW((void)sigma_a_from_melanin(0.0, std::nan("")), Error);
+}
+
 }  // namespace
 }  // namespace coif::shading

@@ -94,6 +94,41 @@ TEST(Viewer, ScriptedParametersAndCameraDrawAsCoifRenderDoes) {
     fs::remove_all(dir);
 }
 
+TEST(Viewer, TheEnvironmentTurnsAndChangesAsCoifRenderLightsIt) {
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-env");
+    const std::string d = dir.string() + "/";
+    // A small sky: a blue gradient with a warm sun, fitted with 8 lights.
+    Image sky(128, 64, 4, 1.0f);
+    for (int y = 0; y < sky.height; ++y)
+        for (int x = 0; x < sky.width; ++x) {
+            const float up = 1.0f - float(y) / float(sky.height);
+            const float sun = std::exp(-(std::pow(float(x - 40), 2.0f) + std::pow(float(y - 14), 2.0f)) / 20.0f);
+            sky.at(x, y)[0] = 0.2f * up + 30.0f * sun;
+            sky.at(x, y)[1] = 0.3f * up + 25.0f * sun;
+            sky.at(x, y)[2] = 0.6f * up + 15.0f * sun;
+        }
+    write_image(dir / "sky.exr", sky);
+    ASSERT_EQ(run_coif("env fit '" + d + "sky.exr' --lights 8 -o '" + d + "l8.json'").exit_code, 0);
+    write_text(dir / "script.json", R"([{"panel": false}, {"rotate_lights": 90}, {"screenshot": ")" + d + R"(a.exr"},
+        {"env": {"file": ")" + d + R"(sky.exr", "lights": 8}}, {"screenshot": ")" + d + R"(b.exr"},
+        {"env": ")" + d + R"(l8.json"}, {"screenshot": ")" + d + R"(c.exr"}])");
+    auto r = run_coif("view --samples 1" + kSize + "--script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_coif("render --samples 1 --rotate-lights 90" + kSize + "-o '" + d + "ra.exr'").exit_code, 0);
+    r = run_coif("render --samples 1 --rotate-lights 90 --env '" + d + "l8.json'" + kSize + "-o '" + d + "rb.exr'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // The turn, and lights read from a file: no tolerance (the same lights through the same renderer).
+    EXPECT_EQ(read_image(dir / "a.exr").pixels, read_image(dir / "ra.exr").pixels);
+    const Image rb = read_image(dir / "rb.exr");
+    EXPECT_EQ(read_image(dir / "c.exr").pixels, rb.pixels);
+    // Fitted in the viewer as `coif env fit` fits them: the same lights but for the file's decimal rounding of
+    // each number (shortest round trip of a float: none), so the same image to half-float precision.
+    EXPECT_LT(max_difference(read_image(dir / "b.exr"), rb), 1e-3);
+    EXPECT_GT(max_difference(read_image(dir / "a.exr"), rb), 0.01) << "another environment lights the hair otherwise";
+    fs::remove_all(dir);
+}
+
 TEST(Viewer, ThePanelCoversItsSideOnly) {
     REQUIRE_WINDOW();
     const fs::path dir = test::scratch_dir("viewer-panel");
