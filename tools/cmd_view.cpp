@@ -32,7 +32,9 @@ void add_view(CLI::App& root) {
         "environment's lights (B: the plain --background instead). It needs a display: use `xvfb-run -a coif view`\n"
         "without one.\n"
         "Left drag orbits, right drag (or Shift + left drag) pans, the wheel zooms, F frames the hair again, + and -\n"
-        "change the exposure, S writes a screenshot (the image `coif render` writes for this camera), Esc or Q quits.\n"
+        "change the exposure, S writes a screenshot (the image `coif render` writes for this camera), Ctrl + left drag\n"
+        "paints absorption onto the hair under the cursor (Ctrl+Z undoes a stroke, Ctrl+Y redoes it; the panel saves\n"
+        "the map that `coif render --absorption` reads), Esc or Q quits.\n"
         "While the camera is dragged the frame is drawn at half size. Tab hides the panel: the frame time and its\n"
         "passes, every --params key (saved to and loaded from that file), the hair colour as melanin, the exposure,\n"
         "and the environment (its turn, and a map of --maps fitted with N SRBF lights while the viewer goes on).\n"
@@ -40,6 +42,8 @@ void add_view(CLI::App& root) {
         "  {\"orbit\": [AZ, EL]} {\"zoom\": F} {\"pan\": [X, Y]} {\"fit\": true} {\"set\": {PARAMS}} {\"params\": FILE}\n"
         "  {\"background\": true|false} {\"panel\": true|false} {\"exposure\": STOPS} {\"rotate_lights\": DEG}\n"
         "  {\"env\": FILE} {\"env\": {\"file\": MAP, \"lights\": N}} {\"frames\": N} {\"screenshot\": FILE} {\"capture\": FILE}\n"
+        "  {\"paint\": {\"at\": [X, Y], \"radius\": PX, \"strength\": S, \"sigma_a\": [R, G, B]}} {\"undo\": true} {\"redo\": true}\n"
+        "  {\"save_absorption\": FILE.exr}\n"
         "A frame is drawn after each action, and the viewer quits after the last. The whole script is checked first:\n"
         "an unknown action or a value out of range is refused before the window opens.");
     o->scene.add_to(view);

@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/core/log.h"
@@ -22,6 +23,7 @@
 #include "online/gl.h"
 #include "online/lighting_uniforms.h"
 #include "online/shell_renderer.h"
+#include "online/shells/shell_pick.h"
 #include "online/window/window.h"
 #include "shaders/hair_parameters.h"
 
@@ -61,6 +63,7 @@ constexpr double kZoomPerStep = 0.9, kMinZoom = 0.1, kMaxZoom = 10.0;
 constexpr float kExposureStep = 1.0f / 3.0f;  // stops per + / − key
 constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera is dragged
 constexpr float kPanelWidth = 300.0f, kPanelLabels = 130.0f;  // pixels: the panel, and its labels' column
+constexpr int kPaintSamples = 32;  // a painted map's columns along each cluster (coif style paint-absorption's default)
 constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 struct Input {
@@ -187,6 +190,7 @@ public:
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
         camera_.elevation = o.view.elevation;
+        if (o.scene.absorption) paint_ = *o.scene.absorption;  // painting goes on from the given map
         rotation_deg_ = o.rotate_lights_deg;
         unrotated_ = scene_.lights;
         environment_label_ = scene_.lights_label;
@@ -259,6 +263,19 @@ private:
                 case K::screenshot: screenshot(a.path); break;
                 case K::capture: capture(a.path); break;
                 case K::panel: show_panel_ = a.on; break;
+                case K::paint: {
+                    begin_stroke();
+                    int fb_w, fb_h;
+                    glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+                    if (a.x < 0 || a.y < 0 || a.x >= fb_w || a.y >= fb_h)
+                        throw Error::parameter("paint", "the point lies outside the " + std::to_string(fb_w) + "x" +
+                                                            std::to_string(fb_h) + " window");
+                    dab(a.x, a.y, a.radius, a.strength, a.sigma_a);
+                    break;
+                }
+                case K::undo: undo(); break;
+                case K::redo: redo(); break;
+                case K::save_absorption: save_absorption(a.path); break;
                 case K::rotate_lights:
                     rotation_deg_ = a.x;
                     set_lights();
@@ -302,6 +319,12 @@ private:
                 case GLFW_KEY_MINUS:
                 case GLFW_KEY_KP_SUBTRACT: exposure_ -= kExposureStep; break;
                 case GLFW_KEY_S: screenshot_key(); break;
+                case GLFW_KEY_Z:
+                    if (control(w)) shift(w) ? redo() : undo();
+                    break;
+                case GLFW_KEY_Y:
+                    if (control(w)) redo();
+                    break;
                 default: break;
             }
         }
@@ -315,6 +338,20 @@ private:
         const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
         const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        // Ctrl + left drag paints (one stroke, one undo step), at the cursor, each frame.
+        if (left && control(w)) {
+            if (!painting_) begin_stroke();
+            painting_ = true;
+            int win_w, win_h, fb_w, fb_h;
+            glfwGetWindowSize(w, &win_w, &win_h);
+            glfwGetFramebufferSize(w, &fb_w, &fb_h);
+            dab(x * fb_w / std::max(win_w, 1), y * fb_h / std::max(win_h, 1), brush_radius_, brush_strength_, brush_sigma_a_);
+            dragging_ = false;
+            last_x_ = x;
+            last_y_ = y;
+            return true;
+        }
+        painting_ = false;
         const bool panning = right || (left && shift), orbiting = left && !shift;
         if (dragging_ && (panning || orbiting)) {
             const double dx = x - last_x_, dy = y - last_y_;
@@ -397,6 +434,97 @@ private:
         if (changed) settings_.hair.fibre.sigma_a = shading::sigma_a_from_melanin(eumelanin_, pheomelanin_);
     }
 
+    static bool control(GLFWwindow* w) {
+        return glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    }
+    static bool shift(GLFWwindow* w) {
+        return glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    }
+
+    // Painting absorption (models/absorption_map.h, what `coif render --absorption` reads): each stroke is one
+    // undo step; the map starts, at the first stroke, as the parameters' σa everywhere.
+    void begin_stroke() {
+        undo_.push_back(paint_);
+        redo_.clear();
+    }
+    void apply_paint() { scene_.renderer->set_absorption(paint_ ? &*paint_ : nullptr); }
+    void undo() {
+        if (undo_.empty()) return;
+        redo_.push_back(std::move(paint_));
+        paint_ = std::move(undo_.back());
+        undo_.pop_back();
+        apply_paint();
+    }
+    void redo() {
+        if (redo_.empty()) return;
+        undo_.push_back(std::move(paint_));
+        paint_ = std::move(redo_.back());
+        redo_.pop_back();
+        apply_paint();
+    }
+    void save_absorption(const std::filesystem::path& path) {
+        if (!paint_) throw Error::parameter("absorption", "nothing is painted yet, so there is no map to save");
+        write_absorption_map(path, *paint_);
+        result_.written.push_back(path);
+    }
+
+    // One dab of the brush centred on window pixel (x, y) (top-left origin), `radius` pixels: the hair under each
+    // pixel of the disc (shell_pick.h) is moved toward `sigma_a` by strength × (1 − r/radius) at the map's column
+    // nearest its t.
+    void dab(double x, double y, double radius, double strength, glm::vec3 sigma_a) {
+        int fb_w, fb_h;
+        glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+        const Camera cam = camera_at(fb_w, fb_h);
+        const PreparedShells& shells = scene_.renderer->prepared();
+        if (!paint_) paint_ = AbsorptionMap(static_cast<int>(shells.clusters()), kPaintSamples, settings_.hair.fibre.sigma_a);
+        std::vector<float> weight(paint_->sigma_a.size(), 0.0f);
+        const int r = static_cast<int>(std::ceil(radius));
+        const int step = std::max(1, r / 4);  // ~80 rays for a large brush: picking is brute force
+        for (int dy = -r; dy <= r; dy += step)
+            for (int dx = -r; dx <= r; dx += step) {
+                const double d = std::hypot(dx, dy);
+                if (d > radius) continue;
+                glm::vec3 origin, direction;
+                cam.ray(float(x + dx + 0.5), float(y + dy + 0.5), origin, direction);
+                const std::optional<ShellHit> hit = pick_shells(shells, origin, direction);
+                if (!hit) continue;
+                const int column = static_cast<int>(std::lround(hit->t * (paint_->samples - 1)));
+                float& w = weight[static_cast<std::size_t>(hit->cluster) * paint_->samples + column];
+                w = std::max(w, static_cast<float>(strength * (radius > 0 ? 1.0 - d / (radius + 1.0) : 1.0)));
+            }
+        for (std::size_t i = 0; i < weight.size(); ++i)
+            if (weight[i] > 0.0f) paint_->sigma_a[i] = glm::mix(paint_->sigma_a[i], sigma_a, weight[i]);
+        apply_paint();
+    }
+
+    // The panel's brush.
+    void paint_panel() {
+        if (!ImGui::CollapsingHeader("paint absorption (Ctrl + drag)")) return;
+        ImGui::SliderFloat("radius (px)", &brush_radius_, 1.0f, 100.0f, "%.0f");
+        ImGui::SliderFloat("strength", &brush_strength_, 0.0f, 1.0f, "%.2f");
+        ImGui::DragFloat3("brush sigma_a", &brush_sigma_a_.x, 0.01f, 0.0f, 50.0f, "%.3g");
+        if (ImGui::Button("brush = melanin colour")) brush_sigma_a_ = shading::sigma_a_from_melanin(eumelanin_, pheomelanin_);
+        if (ImGui::Button("undo (Ctrl+Z)")) undo();
+        ImGui::SameLine();
+        if (ImGui::Button("redo (Ctrl+Y)")) redo();
+        ImGui::SameLine();
+        if (ImGui::Button("clear") && paint_) {
+            begin_stroke();
+            paint_.reset();
+            apply_paint();
+        }
+        ImGui::InputText("map file", absorption_path_, sizeof absorption_path_);
+        if (ImGui::Button("save map")) {
+            try {
+                save_absorption(absorption_path_);
+                message_ = std::string("saved ") + absorption_path_ + " (coif render --absorption)";
+            } catch (const Error& e) {
+                message_ = e.what();
+            }
+        }
+        if (paint_) ImGui::TextWrapped("painted: the map's σa replaces sigma_a below");
+    }
+
     // The S key and the panel's button: a screenshot that, failing, says why and lets the viewer go on.
     void screenshot_key() {
         const std::filesystem::path p = o_.screenshot.empty()
@@ -436,6 +564,7 @@ private:
         if (ImGui::Button("shot (S)")) screenshot_key();
         environment_panel();
         colour_panel();
+        paint_panel();
         if (ImGui::CollapsingHeader("parameters (--params)", ImGuiTreeNodeFlags_DefaultOpen)) {
             ShellSettings edited = settings_;
             bool changed = false;
@@ -644,6 +773,12 @@ private:
     int map_choice_ = 0, fit_count_ = 40;
     std::optional<LightsJob> fit_;
     float eumelanin_ = 1.3f, pheomelanin_ = 0.0f;
+    std::optional<AbsorptionMap> paint_;                     // none: σa from the parameters
+    std::vector<std::optional<AbsorptionMap>> undo_, redo_;  // the map before each stroke, and after each undo
+    bool painting_ = false;
+    float brush_radius_ = 12.0f, brush_strength_ = 0.5f;
+    glm::vec3 brush_sigma_a_{4.0f, 5.0f, 6.0f};  // near-black
+    char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
     Program background_, present_;
     Buffer lights_;

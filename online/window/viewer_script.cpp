@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "models/absorption_map.h"
 #include "offline/srbf_fit.h"
 #include "online/shells/shell_settings.h"
 
@@ -104,6 +105,34 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
             if (!f->is_string() || f->get<std::string>().empty()) throw Error(file, at, "expected a lights JSON or a map file name");
             act.path = f->get<std::string>();
             if (!std::filesystem::is_regular_file(act.path)) throw Error(file, at, "no such file: " + act.path.string());
+        } else if (key == "paint") {
+            act.kind = K::paint;
+            if (!v.is_object() || !v.contains("at")) throw Error(file, at, "expected {\"at\": [X, Y], …}");
+            for (const auto& [k, x] : v.items()) {
+                if (k == "at") {
+                    if (!x.is_array() || x.size() != 2) throw Error(file, at + "/at", "expected two numbers");
+                    act.x = number(x[0], file, at + "/at", 0, 16384);
+                    act.y = number(x[1], file, at + "/at", 0, 16384);
+                } else if (k == "radius") {
+                    act.radius = number(x, file, at + "/radius", 0, 1000);
+                } else if (k == "strength") {
+                    act.strength = number(x, file, at + "/strength", 0, 1);
+                } else if (k == "sigma_a") {
+                    if (!x.is_array() || x.size() != 3) throw Error(file, at + "/sigma_a", "expected three numbers");
+                    for (int c = 0; c < 3; ++c)
+                        act.sigma_a[c] = static_cast<float>(number(x[c], file, at + "/sigma_a", 0, kMaxPaintedSigmaA));
+                } else {
+                    throw Error(file, at, "unknown key '" + k + "' (at, radius, strength, sigma_a)");
+                }
+            }
+        } else if (key == "undo" || key == "redo") {
+            act.kind = key == "undo" ? K::undo : K::redo;
+            if (v != true) throw Error(file, at, "expected true");
+        } else if (key == "save_absorption") {
+            act.kind = K::save_absorption;
+            if (!v.is_string() || v.get<std::string>().empty()) throw Error(file, at, "expected a file name");
+            act.path = v.get<std::string>();
+            if (act.path.extension() != ".exr") throw Error(file, at, "the map must be an .exr, not '" + act.path.string() + "'");
         } else if (key == "frames") {
             act.kind = K::frames;
             act.x = number(v, file, at, 1.0, 10000.0);
@@ -116,7 +145,7 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
             act.path = image_path(v, file, at, false);
         } else {
             throw Error(file, place, "unknown action '" + key +
-                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, frames, screenshot, capture)");
+                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo, save_absorption, frames, screenshot, capture)");
         }
         actions.push_back(std::move(act));
     }

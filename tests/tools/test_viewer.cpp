@@ -129,6 +129,45 @@ TEST(Viewer, TheEnvironmentTurnsAndChangesAsCoifRenderLightsIt) {
     fs::remove_all(dir);
 }
 
+TEST(Viewer, APaintedStrokeDarkensWhereItIsAndUndoRedoAndSaveAreExact) {
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-paint");
+    const std::string d = dir.string() + "/";
+    write_text(dir / "script.json", R"([{"panel": false}, {"screenshot": ")" + d + R"(a.exr"},
+        {"paint": {"at": [120, 80], "radius": 8, "strength": 1, "sigma_a": [6, 6, 6]}},
+        {"screenshot": ")" + d + R"(b.exr"}, {"save_absorption": ")" + d + R"(map.exr"},
+        {"undo": true}, {"screenshot": ")" + d + R"(undone.exr"}, {"redo": true}, {"screenshot": ")" + d + R"(redone.exr"}])");
+    const std::string size = " --width 240 --height 160 --samples 1 ";
+    auto r = run_coif("view" + size + "--script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_coif("render" + size + "--absorption '" + d + "map.exr' -o '" + d + "rendered.exr'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image a = read_image(dir / "a.exr"), b = read_image(dir / "b.exr");
+    // Darker where painted: the 9 × 9 pixels around the dab lose over a fifth of their light.
+    const auto box = [](const Image& img, int cx, int cy, int half) {
+        double sum = 0;
+        for (int y = cy - half; y <= cy + half; ++y)
+            for (int x = cx - half; x <= cx + half; ++x) sum += img.at(x, y)[0] + img.at(x, y)[1] + img.at(x, y)[2];
+        return sum;
+    };
+    EXPECT_LT(box(b, 120, 80, 4), 0.8 * box(a, 120, 80, 4));
+    // Unchanged elsewhere: the painted columns reach only so far along their clusters (a column and the lighting
+    // rows' interpolation either side), so every pixel beyond 40 pixels of the dab is as it was.
+    int far_changed = 0, near_changed = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const bool differs = a.at(x, y)[0] != b.at(x, y)[0] || a.at(x, y)[1] != b.at(x, y)[1] || a.at(x, y)[2] != b.at(x, y)[2];
+            (std::hypot(x - 120, y - 80) > 40 ? far_changed : near_changed) += differs;
+        }
+    EXPECT_EQ(far_changed, 0);
+    EXPECT_GT(near_changed, 20);
+    // Undo restores the hair exactly, redo the stroke, and the saved map renders as the viewer drew it.
+    EXPECT_EQ(read_image(dir / "undone.exr").pixels, a.pixels);
+    EXPECT_EQ(read_image(dir / "redone.exr").pixels, b.pixels);
+    EXPECT_EQ(read_image(dir / "rendered.exr").pixels, b.pixels);
+    fs::remove_all(dir);
+}
+
 TEST(Viewer, ThePanelCoversItsSideOnly) {
     REQUIRE_WINDOW();
     const fs::path dir = test::scratch_dir("viewer-panel");
@@ -180,7 +219,7 @@ TEST(Viewer, BadScriptsAreRefusedBeforeTheWindowOpens) {
         EXPECT_THAT(r.err, ::testing::Not(HasSubstr("display"))) << name << ": refused before the window";
     };
     const std::string out = (dir / "x.png").string();
-    refused("unknown", R"([{"frames": 1}, {"paint": [1, 2]}])", "action 2: unknown action 'paint'");
+    refused("unknown", R"([{"frames": 1}, {"drag": [1, 2]}])", "action 2: unknown action 'drag'");
     refused("range", R"([{"orbit": [10, 95]}])", "action 1 (orbit)");
     refused("zoom", R"([{"zoom": 0}])", "action 1 (zoom)");
     refused("param", R"([{"set": {"sigma_a": [1, -2, 3]}}])", "sigma_a");
@@ -190,6 +229,9 @@ TEST(Viewer, BadScriptsAreRefusedBeforeTheWindowOpens) {
     refused("json", R"([{"frames": 1})", "not JSON");
     refused("frames", R"([{"frames": 2.5}])", "whole number");
     refused("params", R"([{"params": "/no/such/look.json"}])", "/no/such/look.json");
+    refused("paint", R"([{"paint": {"at": [10, 10], "strength": 2}}])", "action 1 (paint)/strength");
+    refused("brush", R"([{"paint": {"at": [10, 10], "colour": 1}}])", "unknown key 'colour'");
+    refused("map", R"([{"save_absorption": "map.png"}])", ".exr");
     EXPECT_FALSE(fs::exists(out));
     fs::remove_all(dir);
 }
