@@ -117,13 +117,13 @@ double max_relative_difference(const GpuLightingRun& gpu, std::span<const glm::v
     return max_diff;
 }
 
-ShellFrameTimes time_shell_frames(ShellRenderer& r, const Context& context, const Camera& camera,
-                                  const ShellSettings& settings, bool floor, int frames) {
+ShellFrameTimes time_shell_frames(ShellRenderer& r, const Camera& camera, const ShellSettings& settings, bool floor,
+                                  int frames) {
     std::vector<ShellFrameTimes> all;
     for (int f = 0; f <= frames; ++f) {
         const auto t0 = Clock::now();
         r.draw(camera, settings, floor);
-        context.finish();
+        glFinish();
         const double wall = 1e3 * seconds_since(t0);
         if (f > 0) all.push_back({wall, r.timings().lighting_wall_ms, r.timings().shells_wall_ms, r.timings().resolve_wall_ms});
     }

@@ -44,7 +44,7 @@ double max_relative_difference(const GpuLightingRun& gpu, std::span<const glm::v
 struct ShellFrameTimes {
     double wall_ms = 0, lighting_ms = 0, shells_ms = 0, resolve_ms = 0;
 };
-ShellFrameTimes time_shell_frames(ShellRenderer& renderer, const Context& context, const Camera& camera,
-                                  const ShellSettings& settings, bool floor, int frames);
+ShellFrameTimes time_shell_frames(ShellRenderer& renderer, const Camera& camera, const ShellSettings& settings,
+                                  bool floor, int frames);
 
 }  // namespace coif::gl

@@ -96,9 +96,9 @@ void add_bench_render(CLI::App& root) {
             scene.context->finish();
             const double shadows_ms = renderer.timings().shadows_ms;
             const coif::gl::ShellFrameTimes full =
-                coif::gl::time_shell_frames(renderer, *scene.context, cam, settings, false, o->frames);
+                coif::gl::time_shell_frames(renderer, cam, settings, false, o->frames);
             const coif::gl::ShellFrameTimes floor =
-                coif::gl::time_shell_frames(renderer, *scene.context, cam, settings, true, o->frames);
+                coif::gl::time_shell_frames(renderer, cam, settings, true, o->frames);
             const auto& st = renderer.stats();
             rows.push_back({{"scene", name}, {"fit_s", fit_seconds}, {"clusters", st.clusters}, {"sectors", st.sectors},
                             {"triangles", st.triangles}, {"lighting_samples", st.lighting_samples},

@@ -1,6 +1,8 @@
 // coif view — the interactive viewer (online/window/viewer.h): the shell renderer of `coif render` in a window, the
 // same scene from the same options, and scripts of viewer actions (online/window/viewer_script.h).
+#include <algorithm>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <memory>
 
@@ -20,6 +22,46 @@ struct ViewOptions {
     bool no_environment = false;
     std::string screenshot, script, maps;
 };
+
+// The viewer's inputs from the options; everything that can be refused is read before the window opens.
+coif::gl::ViewerOptions viewer_options(const ViewOptions& opts) {
+    const ViewOptions* o = &opts;
+    coif::gl::ViewerOptions vo;
+    if (!o->scene.strands.empty())
+        throw coif::Error::parameter("option --strands", "coif view draws a style's shells; `coif render --strands` draws strands");
+    if (!o->script.empty()) vo.script = coif::gl::read_viewer_script(o->script);
+    // The lights as read: the viewer turns them (live, --rotate-lights to start with).
+    coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->shell.env);
+    vo.rotate_lights_deg = o->shell.rotate_lights_deg;
+    (void)coif::cli::lights_rotation(vo.rotate_lights_deg);  // refused now if not finite
+    vo.settings = o->shell.settings(inputs);
+    namespace fs = std::filesystem;
+    if (!o->maps.empty()) {
+        if (!fs::is_directory(o->maps)) throw coif::Error(o->maps, "", "not a folder (option --maps)");
+        vo.maps_folder = o->maps;
+    } else if (!o->shell.env.empty()) {
+        vo.maps_folder = fs::absolute(o->shell.env).parent_path();
+    } else if (fs::is_directory("../shared/data")) {
+        vo.maps_folder = "../shared/data";
+    }
+    vo.absorption = o->shell.absorption_map(inputs);
+    vo.scene = coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->shell.db, o->shell.lighting_rows);
+    vo.view = o->scene.orbit_view();
+    vo.exposure = o->exposure;
+    vo.environment = !o->no_environment;
+    vo.frames = o->frames;
+    vo.screenshot = o->screenshot;
+    if (!o->screenshot.empty() && o->script.empty() && o->frames > 0) {  // draw the frames, then the screenshot
+        coif::gl::ViewerAction frames, shot;
+        frames.kind = coif::gl::ViewerAction::Kind::frames;
+        frames.x = o->frames;
+        shot.kind = coif::gl::ViewerAction::Kind::screenshot;
+        shot.path = o->screenshot;
+        shot.where = "option --screenshot";
+        vo.script = {frames, shot};
+    }
+    return vo;
+}
 
 void add_view(CLI::App& root) {
     auto o = std::make_shared<ViewOptions>();
@@ -64,48 +106,72 @@ void add_view(CLI::App& root) {
                               "  xvfb-run -a coif view --frames 3 --screenshot shot.png\n"
                               "  xvfb-run -a coif view --script actions.json");
     view->callback([o] {
-        // Everything that can be refused is read before the window opens.
-        coif::gl::ViewerOptions vo;
-        if (!o->scene.strands.empty())
-            throw coif::Error::parameter("option --strands", "coif view draws a style's shells; `coif render --strands` draws strands");
-        if (!o->script.empty()) vo.script = coif::gl::read_viewer_script(o->script);
-        // The lights as read: the viewer turns them (live, --rotate-lights to start with).
-        coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->shell.env);
-        vo.rotate_lights_deg = o->shell.rotate_lights_deg;
-        (void)coif::cli::lights_rotation(vo.rotate_lights_deg);  // refused now if not finite
-        vo.settings = o->shell.settings(inputs);
-        namespace fs = std::filesystem;
-        if (!o->maps.empty()) {
-            if (!fs::is_directory(o->maps)) throw coif::Error(o->maps, "", "not a folder (option --maps)");
-            vo.maps_folder = o->maps;
-        } else if (!o->shell.env.empty()) {
-            vo.maps_folder = fs::absolute(o->shell.env).parent_path();
-        } else if (fs::is_directory("../shared/data")) {
-            vo.maps_folder = "../shared/data";
-        }
-        const std::optional<coif::AbsorptionMap> absorption = o->shell.absorption_map(inputs);
-        vo.scene = coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->shell.db, o->shell.lighting_rows,
-                                              absorption ? &*absorption : nullptr);
-        vo.view = o->scene.orbit_view();
-        vo.exposure = o->exposure;
-        vo.environment = !o->no_environment;
-        vo.frames = o->frames;
-        vo.screenshot = o->screenshot;
-        if (!o->screenshot.empty() && o->script.empty() && o->frames > 0) {  // draw the frames, then the screenshot
-            coif::gl::ViewerAction frames, shot;
-            frames.kind = coif::gl::ViewerAction::Kind::frames;
-            frames.x = o->frames;
-            shot.kind = coif::gl::ViewerAction::Kind::screenshot;
-            shot.path = o->screenshot;
-            shot.where = "option --screenshot";
-            vo.script = {frames, shot};
-        }
+        coif::gl::ViewerOptions vo = viewer_options(*o);
         const coif::gl::ViewerResult r = coif::gl::run_viewer(std::move(vo));
         for (const auto& p : r.written) std::fprintf(stderr, "wrote %s\n", p.c_str());
         std::fprintf(stderr, "coif view: %d frames, the last %.1f ms\n", r.frames, r.last_frame_ms);
     });
 }
 
+struct BenchViewOptions {
+    ViewOptions view;
+    int frames = 5;
+    bool no_panel = false, json = false;
+};
+
+void add_bench_view(CLI::App& root) {
+    CLI::App* bench = coif::cli::noun(root, "bench", "Benchmarks that print figures (JSON with --json, else a table)");
+    auto o = std::make_shared<BenchViewOptions>();
+    o->view.shell.samples = 1;
+    CLI::App* cmd = bench->add_subcommand(
+        "view",
+        "Frame time of `coif view` against the renderer alone (`coif bench render`'s figure) in the same run\n"
+        "Opens the viewer (a display is needed: xvfb-run -a without one), draws one warm-up frame and --frames\n"
+        "frames with the panel and the environment behind the hair, each waited for, then times the same scene,\n"
+        "camera and parameters drawn offscreen by the renderer alone, as `coif bench render` does; prints both\n"
+        "medians and their ratio (the viewer's own cost: the environment, the display pass, the panel).");
+    o->view.scene.add_to(cmd);
+    o->view.shell.add_to(cmd);
+    cmd->add_option("--frames", o->frames, "Frames measured of each (after one warm-up frame)")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_flag("--no-panel", o->no_panel, "Without the panel");
+    cmd->add_flag("--no-environment", o->view.no_environment, "The plain --background behind the hair");
+    coif::cli::add_json_flag(cmd, o->json);
+    coif::cli::examples(cmd, "  xvfb-run -a coif bench view\n  xvfb-run -a coif bench view --width 1280 --height 720 --json");
+    cmd->callback([o] {
+        coif::gl::ViewerOptions vo = viewer_options(o->view);
+        coif::gl::ViewerAction panel, frames;
+        panel.kind = coif::gl::ViewerAction::Kind::panel;
+        panel.on = !o->no_panel;
+        frames.kind = coif::gl::ViewerAction::Kind::frames;
+        frames.x = o->frames;
+        vo.script = {panel, frames};  // the panel action draws the warm-up frame
+        vo.offscreen_frames = o->frames;
+        const coif::gl::ViewerResult r = coif::gl::run_viewer(std::move(vo));
+        std::vector<double> measured(r.frame_ms.begin() + 1, r.frame_ms.end());
+        std::sort(measured.begin(), measured.end());
+        const std::size_t n = measured.size();
+        const double viewer_ms = n % 2 ? measured[n / 2] : 0.5 * (measured[n / 2 - 1] + measured[n / 2]);
+        const coif::gl::ShellFrameTimes& off = *r.offscreen;
+        const nlohmann::ordered_json j = {{"width", o->view.scene.width},     {"height", o->view.scene.height},
+                                          {"frames", o->frames},              {"panel", !o->no_panel},
+                                          {"environment", !o->view.no_environment},
+                                          {"viewer_frame_ms", viewer_ms},     {"renderer_frame_ms", off.wall_ms},
+                                          {"renderer_lighting_ms", off.lighting_ms}, {"renderer_shells_ms", off.shells_ms},
+                                          {"ratio", viewer_ms / off.wall_ms}};
+        if (o->json) {
+            coif::cli::print_json(j);
+            return;
+        }
+        std::printf("%dx%d, median of %d frames each, panel %s, environment %s\n", o->view.scene.width,
+                    o->view.scene.height, o->frames, o->no_panel ? "off" : "on", o->view.no_environment ? "off" : "on");
+        std::printf("viewer frame       %8.1f ms  (%.2f fps)\n", viewer_ms, 1000.0 / viewer_ms);
+        std::printf("renderer alone     %8.1f ms  (lighting %.1f, shells %.1f): coif bench render's figure\n", off.wall_ms,
+                    off.lighting_ms, off.shells_ms);
+        std::printf("ratio              %8.3f\n", viewer_ms / off.wall_ms);
+    });
+}
+
 COIF_REGISTER_COMMAND(70, add_view);
+COIF_REGISTER_COMMAND(95, add_bench_view);
 
 }  // namespace

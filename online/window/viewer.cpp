@@ -190,7 +190,7 @@ public:
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
         camera_.elevation = o.view.elevation;
-        if (o.scene.absorption) paint_ = *o.scene.absorption;  // painting goes on from the given map
+        paint_ = o.absorption;  // painting goes on from the given map
         rotation_deg_ = o.rotate_lights_deg;
         unrotated_ = scene_.lights;
         environment_label_ = scene_.lights_label;
@@ -225,6 +225,14 @@ public:
                 apply(a);
                 frame();  // each change shows in the next frame
             }
+            if (o_.offscreen_frames > 0) {
+                int fb_w, fb_h;
+                glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+                const Camera cam = camera_at(fb_w, fb_h);
+                const RenderTarget target = camera_target(cam, 1);
+                target.bind();
+                result_.offscreen = time_shell_frames(*scene_.renderer, cam, settings_, false, o_.offscreen_frames);
+            }
             return result_;
         }
         while (!closed() && (o_.frames == 0 || result_.frames < o_.frames)) {
@@ -239,6 +247,7 @@ private:
     static HairSceneDesc scene_desc(ViewerOptions& o) {
         HairSceneDesc d = std::move(o.scene);
         d.headless = false;
+        d.absorption = o.absorption ? &*o.absorption : nullptr;  // the options outlive the viewer (run_viewer)
         return d;
     }
 
@@ -648,9 +657,11 @@ private:
         present(fb_w, fb_h);
         if (show_panel_) draw_panel(width, height);
         glfwSwapBuffers(w);
+        glFinish();  // the frame's time includes the GPU's work
         check_errors("viewer frame");
         ++result_.frames;
         result_.last_frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        result_.frame_ms.push_back(result_.last_frame_ms);
         const ShellTimings& t = r.timings();
         char title[256];
         std::snprintf(title, sizeof title, "coif view  %dx%d  %.0f ms (lighting %.0f, shells %.0f)  %s%s", width, height,

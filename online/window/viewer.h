@@ -18,7 +18,9 @@
 #include <optional>
 #include <vector>
 
+#include "models/absorption_map.h"
 #include "models/core/camera.h"
+#include "online/benchmarks.h"
 #include "online/scene/hair_scene.h"
 #include "online/shells/shell_settings.h"
 #include "online/window/viewer_script.h"
@@ -35,8 +37,10 @@ struct ViewerCamera {
 };
 
 struct ViewerOptions {
-    // The scene (its `headless` is ignored: the window's context draws it); its lights as read, before the turn.
+    // The scene (its `headless` and `absorption` are ignored: the window's context draws it, with `absorption`
+    // below); its lights as read, before the turn.
     HairSceneDesc scene;
+    std::optional<AbsorptionMap> absorption;  // painted σa to start from (coif render --absorption), or none
     double rotate_lights_deg = 0;        // the environment turned about +y (coif render --rotate-lights)
     std::filesystem::path maps_folder;   // where the panel lists environment maps (.exr, .hdr); empty: none
     ShellSettings settings;   // the parameters to start from
@@ -46,11 +50,16 @@ struct ViewerOptions {
     std::vector<ViewerAction> script;  // replayed in order, then the viewer quits (online/window/viewer_script.h)
     int frames = 0;                    // without a script: quit after this many frames (0: when closed)
     std::filesystem::path screenshot;  // the S key's file (empty: coif-view-N.png in the working folder)
+    // After the script (coif bench view): time this many frames of the renderer alone, drawn offscreen at the
+    // window's size with the same camera and parameters, as `coif bench render` times them (0: none).
+    int offscreen_frames = 0;
 };
 
 struct ViewerResult {
     int frames = 0;                               // frames drawn
     double last_frame_ms = 0;                     // wall time of the last frame, display included
+    std::vector<double> frame_ms;                 // of every frame, in order (each waited for)
+    std::optional<ShellFrameTimes> offscreen;     // ViewerOptions::offscreen_frames' medians
     std::vector<std::filesystem::path> written;   // screenshots and captures, in order
 };
 

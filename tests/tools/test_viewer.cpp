@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "models/core/image.h"
 #include "tests/common/run.h"
@@ -188,6 +189,18 @@ TEST(Viewer, ThePanelCoversItsSideOnly) {
     EXPECT_EQ(left, 0.0);
     EXPECT_GT(right, 0.05);
     fs::remove_all(dir);
+}
+
+TEST(Viewer, BenchViewTimesTheViewerBesideTheRendererAlone) {
+    REQUIRE_WINDOW();
+    // The figures vary; what is checked is that both are measured, in the same run, and their ratio reported.
+    const auto r = run_coif("bench view --frames 2 --json" + kSize, kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_GT(j["viewer_frame_ms"].get<double>(), 0.0);
+    EXPECT_GT(j["renderer_frame_ms"].get<double>(), 0.0);
+    EXPECT_NEAR(j["ratio"].get<double>(), j["viewer_frame_ms"].get<double>() / j["renderer_frame_ms"].get<double>(), 1e-9);
+    EXPECT_TRUE(j["panel"].get<bool>());
 }
 
 TEST(Viewer, FramesThenScreenshotShowsTheHair) {
