@@ -1,6 +1,7 @@
 #include "online/window/viewer.h"
 
 #include <GLFW/glfw3.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
@@ -63,6 +64,7 @@ constexpr double kZoomPerStep = 0.9, kMinZoom = 0.1, kMaxZoom = 10.0;
 constexpr float kExposureStep = 1.0f / 3.0f;  // stops per + / − key
 constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera is dragged
 constexpr float kPanelWidth = 300.0f, kPanelLabels = 130.0f;  // pixels: the panel, and its labels' column
+constexpr int kRefineGrid = 2;      // still: 2 × 2 shifted frames averaged (coif render --samples 4)
 constexpr int kPaintSamples = 32;  // a painted map's columns along each cluster (coif style paint-absorption's default)
 constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
@@ -186,6 +188,7 @@ public:
           scene_(scene_desc(o)),
           background_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_background.frag"}),
           present_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_present.frag"}),
+          copy_({"shaders/gl/fullscreen.vert", "shaders/gl/copy_texture.frag"}),
           lights_(make_lights_buffer(scene_.lights)),
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
@@ -236,7 +239,9 @@ public:
             return result_;
         }
         while (!closed() && (o_.frames == 0 || result_.frames < o_.frames)) {
-            glfwPollEvents();
+            // Refined and nothing running: wait for the person (a tenth of a second at most, for the panel).
+            if (showing_refined_ && !fit_) glfwWaitEventsTimeout(0.1);
+            else glfwPollEvents();
             if (!handle_input()) break;
             frame();
         }
@@ -384,6 +389,7 @@ private:
         scene_.lights = rotate_srbf_lights_y(unrotated_, srbf_rotation_radians(rotation_deg_));
         scene_.renderer->set_lights(scene_.lights);
         lights_ = make_lights_buffer(scene_.lights);
+        ++version_;
     }
 
     // A finished fit swaps its lights in; a failed one says why.
@@ -456,7 +462,10 @@ private:
         undo_.push_back(paint_);
         redo_.clear();
     }
-    void apply_paint() { scene_.renderer->set_absorption(paint_ ? &*paint_ : nullptr); }
+    void apply_paint() {
+        scene_.renderer->set_absorption(paint_ ? &*paint_ : nullptr);
+        ++version_;
+    }
     void undo() {
         if (undo_.empty()) return;
         redo_.push_back(std::move(paint_));
@@ -625,6 +634,23 @@ private:
 
     // Draws one frame: the hair over the background into a linear target (half size while dragging), then the
     // display pass into the window.
+    // What a frame's picture depends on, but for the exposure (the display pass applies it): when it has not
+    // changed since the last frame, the picture is refined instead of drawn again.
+    struct FrameKey {
+        int width = 0, height = 0;
+        double azimuth = 0, elevation = 0, zoom = 0;
+        glm::dvec2 pan{0.0};
+        bool environment = false;
+        std::string settings;        // the parameters as their file writes them
+        std::uint64_t version = 0;   // lights and painting
+        bool operator==(const FrameKey&) const = default;
+    };
+
+    // Draws one frame: the hair over the background into a linear target (half size while the camera is dragged),
+    // then the display pass into the window. While nothing changes, the next kRefineGrid² frames draw the picture
+    // again shifted within the pixel (the sub-pixel offsets of coif render's supersampling) and their average
+    // replaces it (refined when still); after that, frames only display. ViewerOptions::offscreen_frames (the
+    // benchmark) draws every frame.
     void frame() {
         const auto start = Clock::now();
         poll_fit();
@@ -635,24 +661,20 @@ private:
         const int divisor = dragging_ ? kDragDivisor : 1;
         const int width = std::max(1, fb_w / divisor), height = std::max(1, fb_h / divisor);
         if (!target_ || target_width_ != width || target_height_ != height) make_target(width, height);
-        const Camera cam = camera_at(width, height);
-        ShellRenderer& r = *scene_.renderer;
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-        glViewport(0, 0, width, height);
-        const ShellSettings& s = settings_;
-        // A frame whose fragments overflowed the exact compositing's storage has holes; the storage has grown
-        // since, so it is drawn again (the first frame, a closer view).
-        for (int attempt = 0; attempt < 2; ++attempt) {
-            if (environment_) {
-                draw_environment(cam, width, height);
-                FrameTarget t;
-                t.viewport = glm::ivec4(0, 0, width, height);
-                t.over = true;
-                r.draw_frame(cam.view(), cam.projection(), scene_.lights, s, t, {});
-            } else {
-                r.draw(cam, s);
-            }
-            if (s.compositing != Compositing::exact || r.fragment_list_stats().dropped == 0) break;
+        const FrameKey key{width, height, camera_.azimuth, camera_.elevation, camera_.zoom, camera_.pan, environment_,
+                           shell_settings_json(settings_).dump(), version_};
+        const bool still = key == last_key_ && !dragging_ && o_.offscreen_frames == 0;
+        last_key_ = key;
+        if (!still) {
+            draw_picture(glm::vec2(0.0f), width, height, framebuffer_);
+            refined_ = 0;
+            showing_refined_ = false;
+        } else if (refined_ < kRefineGrid * kRefineGrid) {
+            const int i = refined_ % kRefineGrid, j = refined_ / kRefineGrid;
+            const glm::vec2 jitter((i + 0.5f) / kRefineGrid - 0.5f, (j + 0.5f) / kRefineGrid - 0.5f);
+            draw_picture(jitter, width, height, sub_framebuffer_);  // the picture shown stays until the average is done
+            accumulate(width, height, refined_ == 0);
+            if (++refined_ == kRefineGrid * kRefineGrid) showing_refined_ = true;
         }
         present(fb_w, fb_h);
         if (show_panel_) draw_panel(width, height);
@@ -662,12 +684,57 @@ private:
         ++result_.frames;
         result_.last_frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         result_.frame_ms.push_back(result_.last_frame_ms);
-        const ShellTimings& t = r.timings();
+        const ShellTimings& t = scene_.renderer->timings();
         char title[256];
-        std::snprintf(title, sizeof title, "coif view  %dx%d  %.0f ms (lighting %.0f, shells %.0f)  %s%s", width, height,
+        std::snprintf(title, sizeof title, "coif view  %dx%d  %.0f ms (lighting %.0f, shells %.0f)  %s%s%s", width, height,
                       result_.last_frame_ms, t.lighting_wall_ms, t.shells_wall_ms, environment_ ? "environment" : "background",
-                      divisor > 1 ? "  [half size while dragging]" : "");
+                      divisor > 1 ? "  [half size while dragging]" : "", showing_refined_ ? "  [refined]" : "");
         glfwSetWindowTitle(w, title);
+    }
+
+    // The hair over the background, seen `jitter` pixels shifted (x right, y down), into `fbo`.
+    void draw_picture(glm::vec2 jitter, int width, int height, const Framebuffer& fbo) {
+        const Camera cam = camera_at(width, height);
+        // The shift as coif render's supersampling applies it (online/shell_passes.cpp): in the projection.
+        const glm::vec3 shift(2.0f * jitter.x / width, -2.0f * jitter.y / height, 0.0f);
+        const glm::mat4 projection = glm::translate(glm::mat4(1.0f), shift) * cam.projection();
+        ShellRenderer& r = *scene_.renderer;
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glViewport(0, 0, width, height);
+        const ShellSettings& s = settings_;
+        // A frame whose fragments overflowed the exact compositing's storage has holes; the storage has grown
+        // since, so it is drawn again (the first frame, a closer view).
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            FrameTarget t;
+            t.viewport = glm::ivec4(0, 0, width, height);
+            if (environment_) {
+                draw_environment(cam, projection, width, height);
+                t.over = true;
+            }
+            r.draw_frame(cam.view(), projection, scene_.lights, s, t, {});
+            if (s.compositing != Compositing::exact || r.fragment_list_stats().dropped == 0) break;
+        }
+    }
+
+    // Adds the shifted frame just drawn into the refinement's sum (RGBA32F; cleared first on the first one).
+    void accumulate(int width, int height, bool first) {
+        glBindFramebuffer(GL_FRAMEBUFFER, sum_framebuffer_.id());
+        glViewport(0, 0, width, height);
+        if (first) {
+            const float zero[4] = {0, 0, 0, 0};
+            glClearBufferfv(GL_COLOR, 0, zero);
+        }
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        copy_.use();
+        glBindTextureUnit(0, sub_.id());
+        glUniform1i(copy_.uniform("u_image"), 0);
+        glUniform2i(copy_.uniform("u_origin"), 0, 0);
+        glBindVertexArray(empty_vao_.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
     }
 
     // The display pass: the linear frame → exposure, clip, sRGB, into the window's back buffer.
@@ -677,10 +744,12 @@ private:
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
         present_.use();
-        glBindTextureUnit(0, color_.id());
+        glBindTextureUnit(0, showing_refined_ ? sum_.id() : color_.id());
         glUniform1i(present_.uniform("u_image"), 0);
         glUniform2f(present_.uniform("u_size"), float(fb_w), float(fb_h));
-        glUniform1f(present_.uniform("u_exposure_scale"), std::exp2(exposure_));
+        // The refined sum's average: its kRefineGrid² frames, a power of two, so the scale is exact.
+        const float average = showing_refined_ ? 1.0f / float(kRefineGrid * kRefineGrid) : 1.0f;
+        glUniform1f(present_.uniform("u_exposure_scale"), std::exp2(exposure_) * average);
         glBindVertexArray(empty_vao_.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -706,20 +775,29 @@ private:
         glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
         if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw Error::parameter("viewer", "its framebuffer is incomplete");
+        sub_ = make_texture_2d(GL_RGBA16F, width, height);
+        glCreateFramebuffers(1, &id);
+        sub_framebuffer_ = Framebuffer(id);
+        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, sub_.id(), 0);
+        glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+        sum_ = make_texture_2d(GL_RGBA32F, width, height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+        glCreateFramebuffers(1, &id);
+        sum_framebuffer_ = Framebuffer(id);
+        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, sum_.id(), 0);
         target_ = true;
         target_width_ = width;
         target_height_ = height;
     }
 
     // The environment's SRBF lights along every pixel's ray (shaders/gl/viewer_background.frag).
-    void draw_environment(const Camera& cam, int width, int height) {
+    void draw_environment(const Camera& cam, const glm::mat4& projection, int width, int height) {
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
         glClear(GL_DEPTH_BUFFER_BIT);
         background_.use();
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights_.id());
         glUniform1i(background_.uniform("u_light_count"), static_cast<int>(scene_.lights.size()));
-        const glm::mat4 inverse = glm::inverse(cam.projection() * cam.view());
+        const glm::mat4 inverse = glm::inverse(projection * cam.view());
         glUniformMatrix4fv(background_.uniform("u_inverse_view_projection"), 1, GL_FALSE, &inverse[0][0]);
         glUniform3fv(background_.uniform("u_eye"), 1, &cam.eye[0]);
         glUniform4f(background_.uniform("u_viewport"), 0.0f, 0.0f, float(width), float(height));
@@ -791,12 +869,16 @@ private:
     glm::vec3 brush_sigma_a_{4.0f, 5.0f, 6.0f};  // near-black
     char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
-    Program background_, present_;
+    Program background_, present_, copy_;  // the environment, the display pass, the refinement's adds
     Buffer lights_;
     VertexArray empty_vao_;
-    Texture color_;
+    Texture color_, sub_, sum_;  // the frame shown; the refinement's shifted frame, and their sum
     Renderbuffer depth_;
-    Framebuffer framebuffer_;
+    Framebuffer framebuffer_, sub_framebuffer_, sum_framebuffer_;
+    FrameKey last_key_;
+    std::uint64_t version_ = 0;  // bumped by every change of the lights or the painting
+    int refined_ = 0;            // shifted frames summed since the picture last changed
+    bool showing_refined_ = false;
     bool target_ = false;
     int target_width_ = 0, target_height_ = 0;
     ViewerCamera camera_;

@@ -11,7 +11,8 @@
 // that file), the hair's colour as melanin concentrations, the exposure, and the environment: its turn, and a map
 // from `maps_folder` fitted with a chosen number of SRBF lights in the background while the viewer goes on.
 // While the camera is dragged the frame is drawn at half size and scaled up, so that it follows the mouse; it is
-// drawn at full size again when the mouse is let go. The window's title shows the frame time and its passes.
+// drawn at full size again when the mouse is let go, and refined when still: 2 × 2 frames shifted within the
+// pixel (coif render --samples 4's offsets) are averaged, then the viewer only displays until something changes. The window's title shows the frame time and its passes.
 // Scripts (online/window/viewer_script.h) replay the same actions without a person.
 #include <filesystem>
 #include <glm/glm.hpp>
