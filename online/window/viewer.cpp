@@ -3,8 +3,6 @@
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
-#include <imgui_impl_opengl3.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -24,7 +22,8 @@
 #include "online/gl.h"
 #include "online/lighting_uniforms.h"
 #include "online/shell_renderer.h"
-#include "online/shells/shell_pick.h"
+#include "online/shells/painting.h"
+#include "online/window/panel.h"
 #include "online/window/window.h"
 #include "shaders/hair_parameters.h"
 
@@ -65,8 +64,6 @@ constexpr float kExposureStep = 1.0f / 3.0f;  // stops per + / − key
 constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera is dragged
 constexpr float kPanelWidth = 300.0f, kPanelLabels = 130.0f;  // pixels: the panel, and its labels' column
 constexpr int kRefineGrid = 2;      // still: 2 × 2 shifted frames averaged (coif render --samples 4)
-constexpr int kPaintSamples = 32;  // a painted map's columns along each cluster (coif style paint-absorption's default)
-constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 struct Input {
     double scroll = 0;                 // wheel steps since the last frame
@@ -92,90 +89,6 @@ struct LightsJob {
     Clock::time_point start = Clock::now();
 };
 
-// Dear ImGui in the window: its context and backends, made after the viewer's own GLFW callbacks (which the
-// backend chains to) and torn down before the window.
-class Gui {
-public:
-    explicit Gui(GLFWwindow* w) {
-        IMGUI_CHECKVERSION();
-        ImGui::CreateContext();
-        ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
-        ImGui::StyleColorsDark();
-        // The parameters' help speaks Greek (σa, η, β_R): DejaVu Sans (Debian's fonts-dejavu-core) with the Greek
-        // and general punctuation ranges; ImGui's built-in ASCII font if it is missing.
-        static const ImWchar ranges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2000, 0x22FF, 0};
-        if (std::filesystem::exists(kFont)) ImGui::GetIO().Fonts->AddFontFromFileTTF(kFont, 15.0f, nullptr, ranges);
-        if (!ImGui_ImplGlfw_InitForOpenGL(w, true) || !ImGui_ImplOpenGL3_Init("#version 450 core"))
-            throw Error::parameter("viewer", "the Dear ImGui panel could not start");
-    }
-    ~Gui() {
-        ImGui_ImplOpenGL3_Shutdown();
-        ImGui_ImplGlfw_Shutdown();
-        ImGui::DestroyContext();
-    }
-    Gui(const Gui&) = delete;
-    Gui& operator=(const Gui&) = delete;
-};
-
-// One parameter of a table (models/core/param_table.h) as a widget, in its interface unit; true when changed.
-template <class T>
-bool param_widget(const Param<T>& p, T& target) {
-    bool changed = false;
-    const std::string& label = p.key;  // the unit and range are in the tooltip
-    const double lo = p.min, hi = std::isfinite(p.max) ? p.max : p.min + 1e3 * std::max(1.0, std::abs(p.min) + 1.0);
-    switch (p.kind) {
-        case ParamKind::real:
-        case ParamKind::rgb: {
-            double v[3];
-            for (int c = 0; c < p.components(); ++c) v[c] = p.get(target, c);
-            const bool wide = hi - lo > 1000.0;  // σa's 0 … 10⁴: dragged, not slid
-            changed = wide ? ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, v, p.components(), 0.01f, &lo, &hi, "%.4g")
-                           : ImGui::SliderScalarN(label.c_str(), ImGuiDataType_Double, v, p.components(), &lo, &hi, "%.4g");
-            if (changed)
-                for (int c = 0; c < p.components(); ++c) {
-                    double x = std::clamp(v[c], lo, hi);
-                    if (p.min_exclusive && x <= p.min) x = std::nextafter(p.min, hi);
-                    p.set(target, c, x);
-                }
-            break;
-        }
-        case ParamKind::integer: {
-            int v = static_cast<int>(p.get(target, 0));
-            const int ilo = static_cast<int>(lo), ihi = static_cast<int>(std::min(hi, 1e6));
-            if ((changed = ImGui::SliderInt(label.c_str(), &v, ilo, ihi))) p.set(target, 0, std::clamp(v, ilo, ihi));
-            break;
-        }
-        case ParamKind::boolean: {
-            bool v = p.get(target, 0) != 0.0;
-            if ((changed = ImGui::Checkbox(label.c_str(), &v))) p.set(target, 0, v ? 1.0 : 0.0);
-            break;
-        }
-        case ParamKind::choice: {
-            int v = static_cast<int>(p.get(target, 0));
-            std::vector<const char*> names;
-            for (const std::string& n : p.names) names.push_back(n.c_str());
-            if ((changed = ImGui::Combo(label.c_str(), &v, names.data(), static_cast<int>(names.size())))) p.set(target, 0, v);
-            break;
-        }
-        case ParamKind::flags: {
-            unsigned bits = static_cast<unsigned>(p.get(target, 0));
-            ImGui::TextUnformatted(label.c_str());
-            for (std::size_t i = 0; i < p.names.size(); ++i) {
-                bool on = bits & (1u << i);
-                ImGui::SameLine();
-                if (ImGui::Checkbox((p.names[i] + "##" + p.key).c_str(), &on)) {
-                    bits = on ? bits | (1u << i) : bits & ~(1u << i);
-                    changed = true;
-                }
-            }
-            if (changed) p.set(target, 0, bits);
-            break;
-        }
-    }
-    if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s\n%s", p.help.c_str(), accepted_text(p).c_str());
-    return changed;
-}
-
 // The viewer's state and its GL resources, in the window's context.
 class Viewer {
 public:
@@ -193,7 +106,7 @@ public:
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
         camera_.elevation = o.view.elevation;
-        paint_ = o.absorption;  // painting goes on from the given map
+        painting_ = Painting(o.absorption);  // painting goes on from the given map
         rotation_deg_ = o.rotate_lights_deg;
         unrotated_ = scene_.lights;
         environment_label_ = scene_.lights_label;
@@ -278,13 +191,13 @@ private:
                 case K::capture: capture(a.path); break;
                 case K::panel: show_panel_ = a.on; break;
                 case K::paint: {
-                    begin_stroke();
                     int fb_w, fb_h;
                     glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
                     if (a.x < 0 || a.y < 0 || a.x >= fb_w || a.y >= fb_h)
                         throw Error::parameter("paint", "the point lies outside the " + std::to_string(fb_w) + "x" +
                                                             std::to_string(fb_h) + " window");
-                    dab(a.x, a.y, a.radius, a.strength, a.sigma_a);
+                    painting_.begin_stroke();
+                    dab(a.x, a.y, Brush{a.radius, a.strength, a.sigma_a});
                     break;
                 }
                 case K::undo: undo(); break;
@@ -354,18 +267,18 @@ private:
         const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
         // Ctrl + left drag paints (one stroke, one undo step), at the cursor, each frame.
         if (left && control(w)) {
-            if (!painting_) begin_stroke();
-            painting_ = true;
+            if (!stroking_) painting_.begin_stroke();
+            stroking_ = true;
             int win_w, win_h, fb_w, fb_h;
             glfwGetWindowSize(w, &win_w, &win_h);
             glfwGetFramebufferSize(w, &fb_w, &fb_h);
-            dab(x * fb_w / std::max(win_w, 1), y * fb_h / std::max(win_h, 1), brush_radius_, brush_strength_, brush_sigma_a_);
+            dab(x * fb_w / std::max(win_w, 1), y * fb_h / std::max(win_h, 1), brush_);
             dragging_ = false;
             last_x_ = x;
             last_y_ = y;
             return true;
         }
-        painting_ = false;
+        stroking_ = false;
         const bool panning = right || (left && shift), orbiting = left && !shift;
         if (dragging_ && (panning || orbiting)) {
             const double dx = x - last_x_, dy = y - last_y_;
@@ -456,79 +369,44 @@ private:
         return glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     }
 
-    // Painting absorption (models/absorption_map.h, what `coif render --absorption` reads): each stroke is one
-    // undo step; the map starts, at the first stroke, as the parameters' σa everywhere.
-    void begin_stroke() {
-        undo_.push_back(paint_);
-        redo_.clear();
-    }
+    // Painting (online/shells/painting.h): the renderer draws the painted map, or σa from the parameters.
     void apply_paint() {
-        scene_.renderer->set_absorption(paint_ ? &*paint_ : nullptr);
+        scene_.renderer->set_absorption(painting_.map());
         ++version_;
     }
     void undo() {
-        if (undo_.empty()) return;
-        redo_.push_back(std::move(paint_));
-        paint_ = std::move(undo_.back());
-        undo_.pop_back();
-        apply_paint();
+        if (painting_.undo()) apply_paint();
     }
     void redo() {
-        if (redo_.empty()) return;
-        undo_.push_back(std::move(paint_));
-        paint_ = std::move(redo_.back());
-        redo_.pop_back();
-        apply_paint();
+        if (painting_.redo()) apply_paint();
     }
     void save_absorption(const std::filesystem::path& path) {
-        if (!paint_) throw Error::parameter("absorption", "nothing is painted yet, so there is no map to save");
-        write_absorption_map(path, *paint_);
+        if (!painting_.map()) throw Error::parameter("absorption", "nothing is painted yet, so there is no map to save");
+        write_absorption_map(path, *painting_.map());
         result_.written.push_back(path);
     }
-
-    // One dab of the brush centred on window pixel (x, y) (top-left origin), `radius` pixels: the hair under each
-    // pixel of the disc (shell_pick.h) is moved toward `sigma_a` by strength × (1 − r/radius) at the map's column
-    // nearest its t.
-    void dab(double x, double y, double radius, double strength, glm::vec3 sigma_a) {
+    // One dab at window pixel (x, y), top-left origin.
+    void dab(double x, double y, const Brush& brush) {
         int fb_w, fb_h;
         glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
-        const Camera cam = camera_at(fb_w, fb_h);
-        const PreparedShells& shells = scene_.renderer->prepared();
-        if (!paint_) paint_ = AbsorptionMap(static_cast<int>(shells.clusters()), kPaintSamples, settings_.hair.fibre.sigma_a);
-        std::vector<float> weight(paint_->sigma_a.size(), 0.0f);
-        const int r = static_cast<int>(std::ceil(radius));
-        const int step = std::max(1, r / 4);  // ~80 rays for a large brush: picking is brute force
-        for (int dy = -r; dy <= r; dy += step)
-            for (int dx = -r; dx <= r; dx += step) {
-                const double d = std::hypot(dx, dy);
-                if (d > radius) continue;
-                glm::vec3 origin, direction;
-                cam.ray(float(x + dx + 0.5), float(y + dy + 0.5), origin, direction);
-                const std::optional<ShellHit> hit = pick_shells(shells, origin, direction);
-                if (!hit) continue;
-                const int column = static_cast<int>(std::lround(hit->t * (paint_->samples - 1)));
-                float& w = weight[static_cast<std::size_t>(hit->cluster) * paint_->samples + column];
-                w = std::max(w, static_cast<float>(strength * (radius > 0 ? 1.0 - d / (radius + 1.0) : 1.0)));
-            }
-        for (std::size_t i = 0; i < weight.size(); ++i)
-            if (weight[i] > 0.0f) paint_->sigma_a[i] = glm::mix(paint_->sigma_a[i], sigma_a, weight[i]);
-        apply_paint();
+        if (painting_.dab(camera_at(fb_w, fb_h), scene_.renderer->prepared(), x, y, brush, settings_.hair.fibre.sigma_a))
+            apply_paint();
     }
 
     // The panel's brush.
     void paint_panel() {
         if (!ImGui::CollapsingHeader("paint absorption (Ctrl + drag)")) return;
-        ImGui::SliderFloat("radius (px)", &brush_radius_, 1.0f, 100.0f, "%.0f");
-        ImGui::SliderFloat("strength", &brush_strength_, 0.0f, 1.0f, "%.2f");
-        ImGui::DragFloat3("brush sigma_a", &brush_sigma_a_.x, 0.01f, 0.0f, 50.0f, "%.3g");
-        if (ImGui::Button("brush = melanin colour")) brush_sigma_a_ = shading::sigma_a_from_melanin(eumelanin_, pheomelanin_);
+        float radius = static_cast<float>(brush_.radius), strength = static_cast<float>(brush_.strength);
+        if (ImGui::SliderFloat("radius (px)", &radius, 1.0f, 100.0f, "%.0f")) brush_.radius = radius;
+        if (ImGui::SliderFloat("strength", &strength, 0.0f, 1.0f, "%.2f")) brush_.strength = strength;
+        ImGui::DragFloat3("brush sigma_a", &brush_.sigma_a.x, 0.01f, 0.0f, 50.0f, "%.3g");
+        if (ImGui::Button("brush = melanin colour")) brush_.sigma_a = shading::sigma_a_from_melanin(eumelanin_, pheomelanin_);
         if (ImGui::Button("undo (Ctrl+Z)")) undo();
         ImGui::SameLine();
         if (ImGui::Button("redo (Ctrl+Y)")) redo();
         ImGui::SameLine();
-        if (ImGui::Button("clear") && paint_) {
-            begin_stroke();
-            paint_.reset();
+        if (ImGui::Button("clear") && painting_.map()) {
+            painting_.clear();
             apply_paint();
         }
         ImGui::InputText("map file", absorption_path_, sizeof absorption_path_);
@@ -540,7 +418,7 @@ private:
                 message_ = e.what();
             }
         }
-        if (paint_) ImGui::TextWrapped("painted: the map's σa replaces sigma_a below");
+        if (painting_.map()) ImGui::TextWrapped("painted: the map's σa replaces sigma_a below");
     }
 
     // The S key and the panel's button: a screenshot that, failing, says why and lets the viewer go on.
@@ -755,12 +633,9 @@ private:
     }
 
     void draw_panel(int width, int height) {
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
+        gui_->new_frame();
         panel(width, height);
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        gui_->render();
     }
 
     void make_target(int width, int height) {
@@ -828,7 +703,7 @@ private:
         if (!target_) frame();
         std::vector<std::uint8_t> rgba(static_cast<std::size_t>(fb_w) * fb_h * 4);
         present(fb_w, fb_h);  // the last frame shown, again into the back buffer, read before any swap
-        if (show_panel_ && ImGui::GetDrawData()) ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (show_panel_) gui_->render_again();
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         glReadBuffer(GL_BACK);
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -862,11 +737,9 @@ private:
     int map_choice_ = 0, fit_count_ = 40;
     std::optional<LightsJob> fit_;
     float eumelanin_ = 1.3f, pheomelanin_ = 0.0f;
-    std::optional<AbsorptionMap> paint_;                     // none: σa from the parameters
-    std::vector<std::optional<AbsorptionMap>> undo_, redo_;  // the map before each stroke, and after each undo
-    bool painting_ = false;
-    float brush_radius_ = 12.0f, brush_strength_ = 0.5f;
-    glm::vec3 brush_sigma_a_{4.0f, 5.0f, 6.0f};  // near-black
+    Painting painting_;
+    Brush brush_;
+    bool stroking_ = false;  // Ctrl + left button held: one stroke
     char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
     Program background_, present_, copy_;  // the environment, the display pass, the refinement's adds

@@ -44,6 +44,18 @@ double max_difference(const Image& a, const Image& b) {
     return worst;
 }
 
+// Channels more than one 8-bit step apart once tone-mapped as a PNG (what a window or a PNG shows).
+int steps_apart(const Image& a, const Image& b) {
+    EXPECT_EQ(a.pixels.size(), b.pixels.size());
+    if (a.pixels.size() != b.pixels.size()) return -1;
+    int off = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                off += std::abs(tone_map_srgb(a.at(x, y)[c], 1.0f) - tone_map_srgb(b.at(x, y)[c], 1.0f)) > 1.5f / 255.0f;
+    return off;
+}
+
 TEST(Viewer, ScriptedParametersAndCameraDrawAsCoifRenderDoes) {
     REQUIRE_WINDOW();
     const fs::path dir = test::scratch_dir("viewer-script");
@@ -76,16 +88,7 @@ TEST(Viewer, ScriptedParametersAndCameraDrawAsCoifRenderDoes) {
     const Image shown = read_image(dir / "shown.png"), shown_env = read_image(dir / "shown_environment.png");
     WriteOptions wo;
     write_image(dir / "rb.png", read_image(dir / "rb.exr"), wo);
-    const Image expected = read_image(dir / "rb.png");
-    ASSERT_EQ(shown.width, expected.width);
-    int off = 0;
-    for (int y = 0; y < shown.height; ++y)
-        for (int x = 0; x < shown.width; ++x)
-            for (int c = 0; c < 3; ++c) {
-                const float s = tone_map_srgb(shown.at(x, y)[c], 1.0f), e = tone_map_srgb(expected.at(x, y)[c], 1.0f);
-                off += std::abs(s - e) > 1.5f / 255.0f;
-            }
-    EXPECT_EQ(off, 0) << "channels shown unlike the PNG";
+    EXPECT_EQ(steps_apart(shown, read_image(dir / "rb.png")), 0) << "channels shown unlike the PNG";
     // The environment behind the hair: the corners differ from the plain background; the hair's pixels do not.
     EXPECT_GT(max_difference(shown, shown_env), 0.05);
     EXPECT_NEAR(shown.at(80, 60)[0], shown_env.at(80, 60)[0], 2e-2f) << "the hair in the middle covers the background";
@@ -180,21 +183,13 @@ TEST(Viewer, AStillPictureRefinesToCoifRendersSupersampledImage) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_EQ(run_coif("render --samples 4" + kSize + "-o '" + d + "r4.png'").exit_code, 0);
     ASSERT_EQ(run_coif("render --samples 1" + kSize + "-o '" + d + "r1.png'").exit_code, 0);
-    const auto steps_off = [](const Image& a, const Image& b) {  // channels more than one 8-bit step apart
-        int off = 0;
-        for (int y = 0; y < a.height; ++y)
-            for (int x = 0; x < a.width; ++x)
-                for (int c = 0; c < 3; ++c)
-                    off += std::abs(tone_map_srgb(a.at(x, y)[c], 1.0f) - tone_map_srgb(b.at(x, y)[c], 1.0f)) > 1.5f / 255.0f;
-        return off;
-    };
     const Image first = read_image(dir / "first.png"), refined = read_image(dir / "refined.png");
     const Image r1 = read_image(dir / "r1.png"), r4 = read_image(dir / "r4.png");
     // The same sub-pixel offsets and the same average as coif render --samples 4 (the eye from the view matrix
     // differs in the last bits, hence one 8-bit step); the first frame is the single-sample one.
-    EXPECT_EQ(steps_off(refined, r4), 0);
-    EXPECT_EQ(steps_off(first, r1), 0);
-    EXPECT_GT(steps_off(r1, r4), 50) << "supersampling must change the edges, or this test shows nothing";
+    EXPECT_EQ(steps_apart(refined, r4), 0);
+    EXPECT_EQ(steps_apart(first, r1), 0);
+    EXPECT_GT(steps_apart(r1, r4), 50) << "supersampling must change the edges, or this test shows nothing";
     fs::remove_all(dir);
 }
 
