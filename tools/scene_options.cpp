@@ -156,7 +156,7 @@ void ShellOptions::add_to(CLI::App* app) {
                     "lights); default: the embedded courtyard lights");
     app->add_option("--params", params,
                     "Parameters file: a JSON object of the keys listed below, each optional; default: 000's brown hair and "
-                    "the renderer's defaults (for a .coif asset: the parameters it was baked with)");
+                    "the renderer's defaults (for a .coif asset: the parameters it was baked with); the strand lines read the hair keys only");
     app->add_option("--absorption", absorption,
                     "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
                     "--params' sigma_a");

@@ -9,7 +9,8 @@
 // screenshot (what `coif render` writes for this camera: --screenshot, else coif-view-N.png), Tab hides the panel,
 // Esc or Q quits. The panel (Dear ImGui) edits every parameter of `coif render --params` (saved to and loaded from
 // that file), the hair's colour as melanin concentrations, the exposure, and the environment: its turn, and a map
-// from `maps_folder` fitted with a chosen number of SRBF lights in the background while the viewer goes on.
+// from `maps_folder` fitted with a chosen number of SRBF lights in the background while the viewer goes on (quitting
+// during a fit waits for it to end).
 // While the camera is dragged the frame is drawn at half size and scaled up, so that it follows the mouse; it is
 // drawn at full size again when the mouse is let go, and refined when still: 2 × 2 frames shifted within the
 // pixel (coif render --samples 4's offsets) are averaged, then the viewer only displays until something changes. The window's title shows the frame time and its passes.
