@@ -277,7 +277,16 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
             static_cast<GLuint>(c));
     };
+    // Clusters wholly outside the view make no fragment: skipped, the image is the same.
+    std::vector<char> visible(shells.clusters(), 1);
+    if (s.cull) {
+        const std::vector<ClusterBox> boxes = cluster_boxes(shells);
+        for (std::size_t c = 0; c < boxes.size(); ++c) visible[c] = box_in_view(vp, boxes[c]);
+    }
+    drawn_ = 0;
     for (std::size_t c : order) {
+        if (!visible[c]) continue;
+        ++drawn_;
         glCullFace(GL_FRONT);  // back faces (far side, seen through the core): outer → inner
         for (int j = L.layers - 1; j >= 0; --j) draw_layer(c, j);
         glCullFace(GL_BACK);   // front faces: inner → outer

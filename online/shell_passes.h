@@ -115,6 +115,8 @@ public:
                 const ShellSettings& s, bool floor, const LightingPass& lighting);
     // The exact compositing's lists (made on first use), or null before.
     FragmentLists* lists() const { return lists_.get(); }
+    // Clusters drawn by the last draw (those in the view, with ShellSettings::cull).
+    std::size_t clusters_drawn() const { return drawn_; }
 
 private:
     const Program& shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
@@ -123,6 +125,7 @@ private:
     std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use
     std::unique_ptr<FragmentLists> lists_;
     GLint target_framebuffer_ = 0;  // the exact compositing's: bound when its first draw began
+    std::size_t drawn_ = 0;
 };
 
 }  // namespace coif::gl

@@ -202,6 +202,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const Shel
         t_pass = Clock::now();
     }
     timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, s, floor_only, m.lighting);
+    timings_.clusters_drawn = (d.first ? 0 : timings_.clusters_drawn) + m.shells_pass.clusters_drawn();
     if (s.timed) {
         glFinish();
         timings_.shells_wall_ms = wall_ms_since(t_pass);

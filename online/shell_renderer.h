@@ -83,6 +83,7 @@ struct ShellTimings {
     double shadows_ms = 0;  // wall time of the shadow pass (glFinish); 0 when cached
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact compositing's resolve (timed, Compositing::exact)
+    std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
 };
 
 class ShellRenderer {

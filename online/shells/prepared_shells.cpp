@@ -21,6 +21,45 @@ glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
 
 }  // namespace
 
+std::vector<ClusterBox> cluster_boxes(const PreparedShells& p) {
+    std::vector<std::pair<glm::vec3, glm::vec3>> proto(p.meshes.size());  // per prototype: its outer mesh's box
+    for (std::size_t q = 0; q < p.meshes.size(); ++q) {
+        const MeshRange& outer = p.meshes[q].back();
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (std::int32_t v = 0; v < outer.vertex_count; ++v) {
+            const glm::vec3 x = p.vertices[static_cast<std::size_t>(outer.base_vertex + v)].position;
+            lo = glm::min(lo, x);
+            hi = glm::max(hi, x);
+        }
+        proto[q] = {lo, hi};
+    }
+    std::vector<ClusterBox> out(p.instances.size());
+    for (std::size_t c = 0; c < p.instances.size(); ++c) {
+        const auto [lo, hi] = proto[p.cluster_proto[c]];
+        for (int k = 0; k < 8; ++k) {
+            const glm::vec3 corner(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+            out[c][static_cast<std::size_t>(k)] = glm::vec3(p.instances[c].model * glm::vec4(corner, 1.0f));
+        }
+    }
+    return out;
+}
+
+bool box_in_view(const glm::mat4& vp, const ClusterBox& box) {
+    const glm::vec4 row0(vp[0][0], vp[1][0], vp[2][0], vp[3][0]), row1(vp[0][1], vp[1][1], vp[2][1], vp[3][1]);
+    const glm::vec4 row2(vp[0][2], vp[1][2], vp[2][2], vp[3][2]), row3(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
+    const glm::vec4 planes[6] = {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row3 + row2, row3 - row2};
+    for (const glm::vec4& plane : planes) {
+        bool all_outside = true;
+        for (const glm::vec3& x : box)
+            if (glm::dot(plane, glm::vec4(x, 1.0f)) >= 0.0f) {
+                all_outside = false;
+                break;
+            }
+        if (all_outside) return false;
+    }
+    return true;
+}
+
 glm::mat3 style_orientation(const HairStyle& style) {
     glm::dvec3 sum(0.0);
     for (const Cluster& c : style.clusters) {

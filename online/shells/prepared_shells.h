@@ -17,6 +17,7 @@
 //
 // The structs are std430 mirrors of the GLSL that reads them (shaders/gl/shell.vert, shell_shade.glsl,
 // shell_lighting.comp, shell_shadow.comp); their layout is part of that contract.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -85,6 +86,15 @@ struct PreparedShells {
 // The rotation that turns the style's mean root→tip direction (from its clusters' axes) to −y
 // (models/strands.h hang_axis_rotation): identity for y-up styles.
 glm::mat3 style_orientation(const HairStyle& style);
+
+// Every cluster's bounding box in the shells' space: its outermost layer mesh's box in the prototype's coordinates,
+// placed by its instance (8 corners; an oriented box, tight for long, thin clusters).
+using ClusterBox = std::array<glm::vec3, 8>;
+std::vector<ClusterBox> cluster_boxes(const PreparedShells& shells);
+// Whether a box can show in a view: one with every corner outside one plane of `view_projection`'s frustum
+// (OpenGL clip space −w ≤ x, y, z ≤ w; the near plane is taken as z ≥ −w, which also keeps everything of a [0, w]
+// depth range) cannot.
+bool box_in_view(const glm::mat4& view_projection, const ClusterBox& box);
 
 // Stage 2 (after stage 1, online/scene/cook.h prepare_prototypes): instances, lighting samples and bounds of every cluster under `orientation`.
 // `lighting_rows_per_hsv`: lighting samples per HSV along t (0: the layout's mesh_t, one per mesh row);

@@ -48,6 +48,9 @@ struct ShellSettings {
     // sums. ~40× the shading cost: for error figures (docs/renderer.md), not for frames.
     bool lighting_per_fragment = false;
     bool timed = false;             // glFinish around each pass and wall-clock timings (benchmarks; see ShellTimings)
+    // Skip the clusters whose bounding box lies outside the view (ShellTimings::clusters_drawn counts the others):
+    // the image is the same; false draws every cluster (for tests).
+    bool cull = true;
 };
 // The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
 // 1..4, for the exact compositing (the blended modes use MSAA: 1).
