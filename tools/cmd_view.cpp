@@ -64,8 +64,7 @@ coif::gl::ViewerOptions viewer_options(const ViewOptions& opts) {
 }
 
 void add_view(CLI::App& root) {
-    auto o = std::make_shared<ViewOptions>();
-    o->shell.samples = 1;  // one frame per frame; screenshots supersample as coif render does with --samples N
+    auto o = std::make_shared<ViewOptions>();  // --samples: the screenshots' (frames are one sample, then refined)
     CLI::App* view = root.add_subcommand(
         "view",
         "Open the renderer in a window: `coif render`'s scene, live\n"

@@ -1,12 +1,13 @@
 #include "online/window/viewer_script.h"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "models/core/error.h"
 #include "models/absorption_map.h"
-#include "offline/srbf_fit.h"
+#include "models/core/error.h"
+#include "offline/srbf_lights.h"
 #include "online/shells/shell_settings.h"
 
 namespace coif::gl {

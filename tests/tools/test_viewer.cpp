@@ -72,7 +72,7 @@ TEST(Viewer, ScriptedParametersAndCameraDrawAsCoifRenderDoes) {
         {"zoom": 0.5}, {"pan": [0.2, 0.0]}, {"capture": ")" + d + R"(zoomed.png"},
         {"fit": true}, {"capture": ")" + d + R"(fitted.png"}])");
     // The asset, view-only: drawn from the file, as coif render draws the style it was baked from.
-    auto r = run_coif("view --style '" + asset.string() + "'" + kSize + "--script '" + d + "script.json'", kWindow);
+    auto r = run_coif("view --samples 1 --style '" + asset.string() + "'" + kSize + "--script '" + d + "script.json'", kWindow);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_EQ(run_coif("render --samples 1" + kSize + "-o '" + d + "ra.exr'").exit_code, 0);
     r = run_coif("render --samples 1 --azimuth 120 --elevation 25 --params '" + d + "look.json'" + kSize + "-o '" + d + "rb.exr'");
