@@ -510,8 +510,6 @@ private:
         return camera_.camera(o_.view, scene_.frame_min, scene_.frame_max, width, height);
     }
 
-    // Draws one frame: the hair over the background into a linear target (half size while dragging), then the
-    // display pass into the window.
     // What a frame's picture depends on, but for the exposure (the display pass applies it): when it has not
     // changed since the last frame, the picture is refined instead of drawn again.
     struct FrameKey {
