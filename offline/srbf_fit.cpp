@@ -399,4 +399,10 @@ EnvMap render_srbf_lights(std::span<const SrbfLight> lights, int width) {
     return out;
 }
 
+std::vector<SrbfLight> environment_lights(const std::filesystem::path& file, const SrbfFitSettings& settings,
+                                          const SrbfFitProgress& progress) {
+    if (file.extension() == ".json") return read_srbf_lights(file).lights;
+    return fit_srbf_lights(load_envmap(file), settings, progress).lights;
+}
+
 }  // namespace coif

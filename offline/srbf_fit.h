@@ -61,6 +61,11 @@ using SrbfFitProgress = std::function<void(int iteration, int max_iterations)>;
 SrbfFitResult fit_srbf_lights(const EnvMap& map, const SrbfFitSettings& settings,
                               const SrbfFitProgress& progress = {});
 
+// An environment file's SRBF lights: a lights JSON (as `coif env fit` writes it), else an equirectangular map
+// (offline/envmap.h) fitted with `settings`, reporting to `progress`. Throws coif::Error as the reader or the fit.
+std::vector<SrbfLight> environment_lights(const std::filesystem::path& file, const SrbfFitSettings& settings = {},
+                                          const SrbfFitProgress& progress = {});
+
 struct SrbfFitError {
     double relative_l2 = 0;
     double energy = 0;                     // luminance, signed

@@ -280,7 +280,8 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     // Clusters wholly outside the view make no fragment: skipped, the image is the same.
     std::vector<char> visible(shells.clusters(), 1);
     if (s.cull) {
-        const std::vector<ClusterBox> boxes = cluster_boxes(shells);
+        if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
+        const std::vector<ClusterBox> boxes = cluster_boxes(shells, prototype_boxes_);
         for (std::size_t c = 0; c < boxes.size(); ++c) visible[c] = box_in_view(vp, boxes[c]);
     }
     drawn_ = 0;

@@ -126,6 +126,7 @@ private:
     std::unique_ptr<FragmentLists> lists_;
     GLint target_framebuffer_ = 0;  // the exact compositing's: bound when its first draw began
     std::size_t drawn_ = 0;
+    std::vector<PrototypeBox> prototype_boxes_;  // of the shells drawn (their meshes do not change), made on first use
 };
 
 }  // namespace coif::gl

@@ -1,6 +1,5 @@
 // coif bench load — how long a hairstyle takes to become drawable: cooked live from the style and the database
 // (the baseline) against read from a baked `.coif` asset, both uploaded to the same GL context in the same run.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include "db/default_database.h"
 #include "db/satf.h"
 #include "models/core/error.h"
+#include "models/core/statistics.h"
 #include "online/gl_context.h"
 #include "online/scene/cook.h"
 #include "online/shell_renderer.h"
@@ -24,12 +24,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct BenchLoadOptions {
     std::string style = "@default", db;
@@ -134,7 +128,7 @@ void add_bench_load(CLI::App& root) {
                                           {"total_ms", p.total()},   {"total_without_compile_ms", p.total_without_compile()}};
         };
         const auto later = [](const std::vector<Phases>& v) {
-            std::vector<double> read, cook, upload, compile, total;
+            std::vector<double> read, cook, upload, compile;
             for (std::size_t i = 1; i < v.size(); ++i) {
                 read.push_back(v[i].read);
                 cook.push_back(v[i].cook);
@@ -143,7 +137,8 @@ void add_bench_load(CLI::App& root) {
             }
             Phases m;
             if (read.empty()) return m;
-            m.read = median(read), m.cook = median(cook), m.upload = median(upload), m.compile = median(compile);
+            m.read = coif::median(read), m.cook = coif::median(cook), m.upload = coif::median(upload);
+            m.compile = coif::median(compile);
             return m;
         };
         const Phases live_later = later(live), baked_later = later(baked);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -91,12 +90,7 @@ void add_render(CLI::App& root) {
                    "links for TT and TRT; a TT/TRT key overrides its link. Keys, what they set and what they accept:\n" +
                    coif::params_help(coif::gl::shell_settings_table()));
     render->callback([o] {
-        {  // refuse a bad output name before any work (the default database may take minutes to build)
-            std::string ext = std::filesystem::path(o->output).extension().string();
-            for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-            if (ext != ".exr" && ext != ".png" && ext != ".hdr")
-                throw coif::Error(o->output, "", "unknown image extension '" + ext + "' (use .exr, .png or .hdr)");
-        }
+        coif::check_image_name(o->output);  // before any work (the default database may take minutes to build)
         coif::cli::lock_output(o->output);
         coif::WriteOptions wo;
         wo.exposure = o->exposure;

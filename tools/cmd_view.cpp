@@ -1,12 +1,12 @@
 // coif view — the interactive viewer (online/window/viewer.h): the shell renderer of `coif render` in a window, the
 // same scene from the same options, and scripts of viewer actions (online/window/viewer_script.h).
-#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <filesystem>
 #include <memory>
 
 #include "models/core/error.h"
+#include "models/core/statistics.h"
 #include "online/scene/hair_scene.h"
 #include "online/window/viewer.h"
 #include "tools/cli.h"
@@ -146,10 +146,8 @@ void add_bench_view(CLI::App& root) {
         vo.script = {panel, frames};  // the panel action draws the warm-up frame
         vo.offscreen_frames = o->frames;
         const coif::gl::ViewerResult r = coif::gl::run_viewer(std::move(vo));
-        std::vector<double> measured(r.frame_ms.begin() + 1, r.frame_ms.end());
-        std::sort(measured.begin(), measured.end());
-        const std::size_t n = measured.size();
-        const double viewer_ms = n % 2 ? measured[n / 2] : 0.5 * (measured[n / 2 - 1] + measured[n / 2]);
+        // The median as `coif bench render` takes it (models/core/statistics.h), after the warm-up frame.
+        const double viewer_ms = coif::median(std::vector<double>(r.frame_ms.begin() + 1, r.frame_ms.end()));
         const coif::gl::ShellFrameTimes& off = *r.offscreen;
         const nlohmann::ordered_json j = {{"width", o->view.scene.width},     {"height", o->view.scene.height},
                                           {"frames", o->frames},              {"panel", !o->no_panel},

@@ -116,14 +116,13 @@ std::vector<SrbfLight> load_render_lights(const std::string& env, std::string* l
     const std::filesystem::path p(env);
     if (p.extension() == ".json") {
         *label = env;
-        return read_srbf_lights(p).lights;
+    } else {
+        const SrbfFitSettings fs;
+        std::fprintf(stderr, "coif: fitting %d SRBF lights to %s (save them with `coif env fit` to skip this)\n", fs.lights,
+                     env.c_str());
+        *label = env + " (fitted " + std::to_string(fs.lights) + " SRBF lights)";
     }
-    const EnvMap map = load_envmap(p);
-    SrbfFitSettings fs;
-    std::fprintf(stderr, "coif: fitting %d SRBF lights to %s (save them with `coif env fit` to skip this)\n", fs.lights,
-                 env.c_str());
-    *label = env + " (fitted " + std::to_string(fs.lights) + " SRBF lights)";
-    return fit_srbf_lights(map, fs).lights;
+    return environment_lights(p);
 }
 
 SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env) {

@@ -72,14 +72,24 @@ Image read_image(const fs::path& path, ImageInfo* info) {
     return img;
 }
 
+std::string image_extension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+void check_image_name(const fs::path& path) {
+    const std::string ext = image_extension(path);
+    if (ext != ".exr" && ext != ".png" && ext != ".hdr")
+        throw Error(path, "", "unknown image extension '" + ext + "' (use .exr, .png or .hdr)");
+}
+
 void write_image(const fs::path& path, const Image& image, const WriteOptions& options) {
     if (image.width <= 0 || image.height <= 0 || (image.channels != 3 && image.channels != 4) ||
         image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
         throw Error(path, "", "refusing to write an empty or malformed image");
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".exr" && ext != ".png" && ext != ".hdr")
-        throw Error(path, "", "unknown image extension '" + ext + "' (use .exr, .png or .hdr)");
+    check_image_name(path);
+    const std::string ext = image_extension(path);
 
     // Encoded in memory, then written by write_file_atomic, which checks every write(2): OpenImageIO's own file
     // writers report no error when the disk fills up (a full tmpfs got 0-byte .exr and .png files with success).

@@ -55,6 +55,12 @@ struct WriteOptions {
     std::string description;         // stored as ImageDescription metadata when non-empty
 };
 
+// An image file name's extension, lower case (".png"): what write_image goes by.
+std::string image_extension(const std::filesystem::path& path);
+// Throws the coif::Error write_image throws for a name it cannot write (not .exr, .png or .hdr), so that a command
+// can refuse it before any work.
+void check_image_name(const std::filesystem::path& path);
+
 // Throws coif::Error on an unknown extension, bad image, or failed write; never leaves a partial file.
 void write_image(const std::filesystem::path& path, const Image& image, const WriteOptions& options = {});
 

@@ -21,8 +21,8 @@ glm::mat4 to_mat4(const glm::mat3& orientation, const Similarity& s) {
 
 }  // namespace
 
-std::vector<ClusterBox> cluster_boxes(const PreparedShells& p) {
-    std::vector<std::pair<glm::vec3, glm::vec3>> proto(p.meshes.size());  // per prototype: its outer mesh's box
+std::vector<PrototypeBox> prototype_boxes(const PreparedShells& p) {
+    std::vector<PrototypeBox> proto(p.meshes.size());  // per prototype: its outer mesh's box
     for (std::size_t q = 0; q < p.meshes.size(); ++q) {
         const MeshRange& outer = p.meshes[q].back();
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -33,6 +33,10 @@ std::vector<ClusterBox> cluster_boxes(const PreparedShells& p) {
         }
         proto[q] = {lo, hi};
     }
+    return proto;
+}
+
+std::vector<ClusterBox> cluster_boxes(const PreparedShells& p, std::span<const PrototypeBox> proto) {
     std::vector<ClusterBox> out(p.instances.size());
     for (std::size_t c = 0; c < p.instances.size(); ++c) {
         const auto [lo, hi] = proto[p.cluster_proto[c]];

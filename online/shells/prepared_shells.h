@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "models/core/bulk.h"
@@ -89,8 +90,11 @@ glm::mat3 style_orientation(const HairStyle& style);
 
 // Every cluster's bounding box in the shells' space: its outermost layer mesh's box in the prototype's coordinates,
 // placed by its instance (8 corners; an oriented box, tight for long, thin clusters).
+// The prototypes' boxes (min, max) are the part that depends only on the meshes: made once, placed per frame.
 using ClusterBox = std::array<glm::vec3, 8>;
-std::vector<ClusterBox> cluster_boxes(const PreparedShells& shells);
+using PrototypeBox = std::pair<glm::vec3, glm::vec3>;
+std::vector<PrototypeBox> prototype_boxes(const PreparedShells& shells);
+std::vector<ClusterBox> cluster_boxes(const PreparedShells& shells, std::span<const PrototypeBox> prototypes);
 // Whether a box can show in a view: one with every corner outside one plane of `view_projection`'s frustum
 // (OpenGL clip space −w ≤ x, y, z ≤ w; the near plane is taken as z ≥ −w, which also keeps everything of a [0, w]
 // depth range) cannot.

@@ -16,7 +16,6 @@
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/core/log.h"
-#include "offline/envmap.h"
 #include "offline/srbf_fit.h"
 #include "offline/srbf_lights.h"
 #include "online/gl.h"
@@ -70,24 +69,21 @@ struct Input {
     std::vector<int> keys;             // keys pressed since the last frame
 };
 
-// An environment's SRBF lights: a lights JSON as written by `coif env fit`, else a map fitted with `count` lights
-// exactly as `coif render --env MAP` fits 40 (SrbfFitSettings' defaults), reporting each solver iteration.
-std::vector<SrbfLight> environment_lights(const std::filesystem::path& file, int count, std::atomic<int>* iteration) {
-    if (file.extension() == ".json") return read_srbf_lights(file).lights;
-    SrbfFitSettings fs;
-    fs.lights = count;
-    return fit_srbf_lights(load_envmap(file), fs, [iteration](int i, int) {
-               if (iteration) *iteration = i;
-           }).lights;
-}
-
-// A fit running beside the viewer (the panel's "fit"): the frames go on, and its lights swap in when done.
+// A fit running beside the viewer (the panel's "fit"): the frames go on, and its lights swap in when done. The
+// future is the last member, so that destroying a job first waits for the fit that reports into `iteration`.
 struct LightsJob {
-    std::future<std::vector<SrbfLight>> lights;
-    std::shared_ptr<std::atomic<int>> iteration = std::make_shared<std::atomic<int>>(0);
+    std::atomic<int> iteration{0};
     std::string label;
     Clock::time_point start = Clock::now();
+    std::future<std::vector<SrbfLight>> lights;
 };
+
+// The lights of a map fitted with `count` lights as `coif render --env MAP` fits its 40 (SrbfFitSettings' defaults).
+SrbfFitSettings fit_settings(int count) {
+    SrbfFitSettings fs;
+    fs.lights = count;
+    return fs;
+}
 
 // The viewer's state and its GL resources, in the window's context.
 class Viewer {
@@ -102,7 +98,6 @@ public:
           background_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_background.frag"}),
           present_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_present.frag"}),
           copy_({"shaders/gl/fullscreen.vert", "shaders/gl/copy_texture.frag"}),
-          lights_(make_lights_buffer(scene_.lights)),
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
         camera_.elevation = o.view.elevation;
@@ -208,7 +203,7 @@ private:
                     set_lights();
                     break;
                 case K::env:  // a script waits for the fit
-                    unrotated_ = environment_lights(a.path, a.lights, nullptr);
+                    unrotated_ = environment_lights(a.path, fit_settings(a.lights));
                     environment_label_ = a.path.string();
                     set_lights();
                     break;
@@ -262,7 +257,6 @@ private:
         }
         double x, y;
         glfwGetCursorPos(w, &x, &y);
-        const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
         const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
         // Ctrl + left drag paints (one stroke, one undo step), at the cursor, each frame.
@@ -279,7 +273,7 @@ private:
             return true;
         }
         stroking_ = false;
-        const bool panning = right || (left && shift), orbiting = left && !shift;
+        const bool panning = right || (left && shift(w)), orbiting = left && !shift(w);
         if (dragging_ && (panning || orbiting)) {
             const double dx = x - last_x_, dy = y - last_y_;
             if (orbiting) {
@@ -322,9 +316,9 @@ private:
     void start_fit(const std::filesystem::path& map, int count) {
         fit_.emplace();
         fit_->label = map.filename().string() + " (" + std::to_string(count) + " SRBF lights)";
-        std::atomic<int>* iteration = fit_->iteration.get();
-        fit_->lights = std::async(std::launch::async, [map, count, iteration, keep = fit_->iteration] {
-            return environment_lights(map, count, iteration);
+        std::atomic<int>* iteration = &fit_->iteration;
+        fit_->lights = std::async(std::launch::async, [map, count, iteration] {
+            return environment_lights(map, fit_settings(count), [iteration](int i, int) { *iteration = i; });
         });
     }
 
@@ -344,9 +338,10 @@ private:
         ImGui::SliderInt("SRBF lights", &fit_count_, 1, 200);
         if (fit_) {
             const double seconds = std::chrono::duration<double>(Clock::now() - fit_->start).count();
-            const float done = static_cast<float>(*fit_->iteration) / float(SrbfFitSettings{}.max_iterations);
+            const int iteration = fit_->iteration.load();
+            const float done = static_cast<float>(iteration) / float(SrbfFitSettings{}.max_iterations);
             char text[64];
-            std::snprintf(text, sizeof text, "fitting: iteration %d, %.0f s", fit_->iteration->load(), seconds);
+            std::snprintf(text, sizeof text, "fitting: iteration %d, %.0f s", iteration, seconds);
             ImGui::ProgressBar(std::min(done, 1.0f), ImVec2(-1, 0), text);
         } else if (ImGui::Button("fit and light with it")) {
             start_fit(o_.maps_folder / maps_[static_cast<std::size_t>(map_choice_)], fit_count_);
@@ -536,7 +531,7 @@ private:
         if (fb_w <= 0 || fb_h <= 0) return;  // minimised
         const int divisor = dragging_ ? kDragDivisor : 1;
         const int width = std::max(1, fb_w / divisor), height = std::max(1, fb_h / divisor);
-        if (!target_ || target_width_ != width || target_height_ != height) make_target(width, height);
+        if (target_width_ != width || target_height_ != height) make_target(width, height);
         const FrameKey key{width, height, camera_.azimuth, camera_.elevation, camera_.zoom, camera_.pan, environment_,
                            shell_settings_json(settings_).dump(), version_};
         const bool still = key == last_key_ && !dragging_ && o_.offscreen_frames == 0;
@@ -636,28 +631,29 @@ private:
         gui_->render();
     }
 
+    // The frame shown (RGBA16F, with depth), the refinement's shifted frame (the same) and their sum (RGBA32F).
     void make_target(int width, int height) {
-        color_ = make_texture_2d(GL_RGBA16F, width, height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
         GLuint id = 0;
         glCreateRenderbuffers(1, &id);
         depth_ = Renderbuffer(id);
         glNamedRenderbufferStorage(id, GL_DEPTH_COMPONENT32F, width, height);
-        glCreateFramebuffers(1, &id);
-        framebuffer_ = Framebuffer(id);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, color_.id(), 0);
-        glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
-        if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error::parameter("viewer", "its framebuffer is incomplete");
+        const auto framebuffer = [&](const Texture& color, bool depth) {
+            GLuint fbo = 0;
+            glCreateFramebuffers(1, &fbo);
+            Framebuffer f(fbo);
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color.id(), 0);
+            if (depth) glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+            if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+                throw Error::parameter("viewer", "its framebuffer is incomplete");
+            return f;
+        };
+        const Sampling linear{GL_LINEAR, GL_CLAMP_TO_EDGE};
+        color_ = make_texture_2d(GL_RGBA16F, width, height, linear);
+        framebuffer_ = framebuffer(color_, true);
         sub_ = make_texture_2d(GL_RGBA16F, width, height);
-        glCreateFramebuffers(1, &id);
-        sub_framebuffer_ = Framebuffer(id);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, sub_.id(), 0);
-        glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
-        sum_ = make_texture_2d(GL_RGBA32F, width, height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
-        glCreateFramebuffers(1, &id);
-        sum_framebuffer_ = Framebuffer(id);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, sum_.id(), 0);
-        target_ = true;
+        sub_framebuffer_ = framebuffer(sub_, true);
+        sum_ = make_texture_2d(GL_RGBA32F, width, height, linear);
+        sum_framebuffer_ = framebuffer(sum_, false);
         target_width_ = width;
         target_height_ = height;
     }
@@ -698,7 +694,7 @@ private:
     void capture(const std::filesystem::path& path) {
         int fb_w, fb_h;
         glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
-        if (!target_) frame();
+        if (target_width_ == 0) frame();  // nothing drawn yet
         std::vector<std::uint8_t> rgba(static_cast<std::size_t>(fb_w) * fb_h * 4);
         present(fb_w, fb_h);  // the last frame shown, again into the back buffer, read before any swap
         if (show_panel_) gui_->render_again();
@@ -741,7 +737,7 @@ private:
     char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
     Program background_, present_, copy_;  // the environment, the display pass, the refinement's adds
-    Buffer lights_;
+    Buffer lights_;  // scene_.lights for the environment pass (set_lights)
     VertexArray empty_vao_;
     Texture color_, sub_, sum_;  // the frame shown; the refinement's shifted frame, and their sum
     Renderbuffer depth_;
@@ -750,8 +746,7 @@ private:
     std::uint64_t version_ = 0;  // bumped by every change of the lights or the painting
     int refined_ = 0;            // shifted frames summed since the picture last changed
     bool showing_refined_ = false;
-    bool target_ = false;
-    int target_width_ = 0, target_height_ = 0;
+    int target_width_ = 0, target_height_ = 0;  // of the targets made (0: none yet)
     ViewerCamera camera_;
     Input input_;
     bool dragging_ = false;

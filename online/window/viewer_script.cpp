@@ -1,12 +1,12 @@
 #include "online/window/viewer_script.h"
 
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "models/absorption_map.h"
 #include "models/core/error.h"
+#include "models/core/image.h"
 #include "offline/srbf_lights.h"
 #include "online/shells/shell_settings.h"
 
@@ -24,8 +24,7 @@ double number(const nlohmann::json& v, const std::string& file, const std::strin
 std::filesystem::path image_path(const nlohmann::json& v, const std::string& file, const std::string& place, bool exr) {
     if (!v.is_string() || v.get<std::string>().empty()) throw Error(file, place, "expected a file name");
     std::filesystem::path p = v.get<std::string>();
-    std::string ext = p.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = image_extension(p);
     if (ext != ".png" && !(exr && ext == ".exr"))
         throw Error(file, place, std::string("the image must be a .png") + (exr ? " or .exr" : "") + ", not '" + p.string() + "'");
     return p;
