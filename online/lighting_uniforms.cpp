@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -55,6 +56,23 @@ void set_lighting_uniforms(const Program& program, const shading::HairParams& ha
         const GLint location = program.uniform(("u_config." + std::string(f.name)).c_str());
         std::visit([&](auto member) { glUniform1i(location, static_cast<GLint>(config.*member)); }, f.member);
     }
+}
+
+std::vector<std::string> srbf_variant_defines(const shading::LightingConfig& config, int lobes, bool multiple) {
+    std::string args;
+    for (const shading::LightingConfigField& f : shading::kLightingConfigFields) {
+        if (!args.empty()) args += ", ";
+        std::visit(
+            [&](auto member) {
+                if constexpr (std::is_same_v<std::remove_cvref_t<decltype(config.*member)>, bool>)
+                    args += config.*member ? "true" : "false";
+                else
+                    args += std::to_string(config.*member);
+            },
+            f.member);
+    }
+    return {"SRBF_CONFIG LightingConfig(" + args + ")", "SRBF_LOBES " + std::to_string(lobes),
+            std::string("SRBF_MULTIPLE ") + (multiple ? "1" : "0")};
 }
 
 Buffer make_lights_buffer(std::span<const SrbfLight> lights) {

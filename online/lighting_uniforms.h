@@ -9,6 +9,8 @@
 // Used by the strand renderer (online/strand_renderer.h) and the shell renderer's lighting pass.
 #include <array>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "online/gl.h"
 #include "shaders/lighting.h"
@@ -47,6 +49,12 @@ private:
 // u_hair.* and u_config.* of the program in use: every field of shading::kHairParamsFields and
 // shading::kLightingConfigFields.
 void set_lighting_uniforms(const Program& program, const shading::HairParams& hair, const shading::LightingConfig& config);
+
+// The defines that make shaders/gl/srbf_lights.glsl's lighting configuration, lobes (bit 1 << shading::LOBE_*) and
+// dual scattering compile-time constants, so that the compiler drops what they switch off and unrolls the
+// quadrature: SRBF_CONFIG (a LightingConfig constructor of every shading::kLightingConfigFields field, in order),
+// SRBF_LOBES, SRBF_MULTIPLE. A program built with them is one variant of these three; without them it reads uniforms.
+std::vector<std::string> srbf_variant_defines(const shading::LightingConfig& config, int lobes, bool multiple);
 
 // The lights as the std430 array `GpuLight lights[]` of shaders/gl/srbf_lights.glsl ((unit ω, λ), (L, 0) each);
 // validates each light (shading::validate_light: coif::Error).

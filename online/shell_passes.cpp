@@ -1,6 +1,7 @@
 #include "online/shell_passes.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
@@ -73,13 +74,22 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
     check_errors("ShellGpu upload");
 }
 
+namespace {
+std::uint64_t next_stamp() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+}
+}  // namespace
+
 void ShellGpu::set_lights(std::span<const SrbfLight> l) {
+    lights_stamp = next_stamp();
     lights = make_lights_buffer(l);
     light_count = static_cast<int>(l.size());
     shadows = make_buffer(nullptr, l.size() * sample_count * sizeof(glm::vec2));
 }
 
 void ShellGpu::set_absorption(const AbsorptionMap* map) {
+    absorption_stamp = next_stamp();
     if (!map) {
         absorption_on = false;
         return;
@@ -134,8 +144,6 @@ void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const S
     tables_.bind(prog, 2);
     set_lighting_uniforms(prog, s.hair.fibre, s.hair.config);
     glUniform1i(prog.uniform("u_light_count"), gpu.light_count);
-    glUniform1i(prog.uniform("u_lobes"), s.hair.lobes);
-    glUniform1i(prog.uniform("u_multiple"), s.hair.multiple ? 1 : 0);
     glUniform1i(prog.uniform("u_shadows"), s.shadows && gpu.light_count > 0 ? 1 : 0);
     glUniform1i(prog.uniform("u_absorption_on"), gpu.absorption_on ? 1 : 0);
     if (gpu.absorption_on) {
@@ -155,11 +163,23 @@ std::string LightingPass::tangents_define(const ShellSettings& s) {
     return "SHELL_TANGENTS " + std::to_string(s.tangent_spread != 0.0f ? 4 : 1);
 }
 
-void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye) {
+std::vector<std::string> LightingPass::variant_defines(const ShellSettings& s) {
+    std::vector<std::string> defines = srbf_variant_defines(s.hair.config, s.hair.lobes, s.hair.multiple);
+    defines.push_back(tangents_define(s));
+    return defines;
+}
+
+bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key) {
+    const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
+                      key.tangent_spread == s.tangent_spread && key.eye == eye && key.lights_stamp == gpu.lights_stamp &&
+                      key.absorption_stamp == gpu.absorption_stamp;
+    if (same && s.reuse_lighting) return false;
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
-    const std::string define = tangents_define(s);
-    auto& slot = programs_[define];
-    if (!slot) slot = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_lighting.comp"}, std::vector<std::string>{define});
+    const std::vector<std::string> defines = variant_defines(s);
+    std::string name;
+    for (const std::string& d : defines) name += d + "|";
+    auto& slot = programs_[name];
+    if (!slot) slot = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_lighting.comp"}, defines);
     const Program& program = *slot;
     program.use();
     bind_inputs(program, gpu, s);
@@ -169,6 +189,8 @@ void LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(static_cast<GLuint>((gpu.sample_count + 31) / 32), 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    key = {true, s.hair, s.shadows, s.tangent_spread, eye, gpu.lights_stamp, gpu.absorption_stamp};
+    return true;
 }
 
 // ---- ShellsPass ------------------------------------------------------------------------------------
@@ -178,12 +200,15 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
     const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
-    const std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
-                                           "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
-                                           "SHELL_FOURIER " + std::to_string(s.fourier_order),
-                                           std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
-                                           lighting == 2 ? LightingPass::tangents_define(s) : "SHELL_TANGENTS 1",
-                                           "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};
+    std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
+                                     "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
+                                     "SHELL_FOURIER " + std::to_string(s.fourier_order),
+                                     std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
+                                     "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};
+    if (lighting == 2) {  // the per-fragment reference lights every fragment as the lighting pass lights a sample
+        const std::vector<std::string> variant = LightingPass::variant_defines(s);
+        defines.insert(defines.end(), variant.begin(), variant.end());
+    }
     std::string key = abuffer ? "abuffer" : "blend";
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = programs_[key];

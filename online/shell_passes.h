@@ -62,6 +62,9 @@ struct ShellGpu {
     int light_count = 0;
     Texture absorption;  // RGBA32F σa per (lighting row, cluster), when absorption_on
     bool absorption_on = false;
+    // Changed by set_lights and set_absorption, each to a number never used before: what the lighting pass's sums
+    // were made from (LightingKey).
+    std::uint64_t lights_stamp = 0, absorption_stamp = 0;
 
     void set_lights(std::span<const SrbfLight> lights);
     void set_absorption(const AbsorptionMap* map);
@@ -79,19 +82,34 @@ private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};
 };
 
+// What a lighting pass's sums are a function of: the hair's parameters, the settings the pass reads, the eye (in the
+// shells' space), the lights and the painted absorption (their stamps); the shadows are the lights' (the renderer
+// clears the key when the shadow pass reruns). Equal keys give bit-identical sums.
+struct LightingKey {
+    bool valid = false;
+    shading::HairParameters hair;
+    bool shadows = false;
+    float tangent_spread = 0.0f;
+    glm::vec3 eye{0.0f};
+    std::uint64_t lights_stamp = 0, absorption_stamp = 0;
+};
+
 class LightingPass {
 public:
-    // Writes gpu.lighting for `eye` (in the shells' space).
-    void run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye);
+    // Writes gpu.lighting for `eye` (in the shells' space), unless `key` says that it holds the sums of these
+    // inputs already (and s.reuse_lighting): then it returns false and does nothing. `key` becomes these inputs'.
+    bool run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key);
     // The uniforms and bindings that the lighting pass and the per-fragment lighting reference
     // (ShellSettings::lighting_per_fragment) read: the tables, the parameters, the lights, their shadows, σa.
     void bind_inputs(const Program& program, const ShellGpu& gpu, const ShellSettings& s) const;
 
     // The SHELL_TANGENTS define of the programs that light fibres (shell_light.glsl): 1 when s.tangent_spread is 0.
     static std::string tangents_define(const ShellSettings& s);
+    // The lighting's compile-time variant: srbf_variant_defines of the settings' hair and the tangents_define.
+    static std::vector<std::string> variant_defines(const ShellSettings& s);
 
 private:
-    std::map<std::string, std::unique_ptr<Program>> programs_;  // by SHELL_TANGENTS, made on first use
+    std::map<std::string, std::unique_ptr<Program>> programs_;  // by variant_defines, made on first use
     LightingTextures tables_;  // the lighting module's tables (online/lighting_uniforms.h)
 };
 

@@ -27,6 +27,8 @@ struct InstanceLights {
     Buffer buffer, shadows;
     int count = 0;
     Texture lighting;
+    LightingKey lighting_key;  // what `lighting` holds the sums of
+    std::uint64_t lights_stamp = 0;
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
 };
@@ -41,9 +43,9 @@ struct ShellRenderer::Impl {
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
-    // render()'s frames after its first: the same eye, lights and settings, so the lighting sums of the first frame
-    // are reused as they are (exact: the pass is a function of those alone; the jitter moves only the image).
-    bool reuse_lighting = false;
+    // What gpu->lighting holds the sums of: a frame whose inputs are the same (render()'s shifted frames among them:
+    // the jitter moves only the image) reuses them (ShellSettings::reuse_lighting).
+    LightingKey lighting_key;
     std::vector<InstanceLights> instances;  // draw_frame's, by instance index
 
     void swap(InstanceLights& l) {
@@ -51,6 +53,8 @@ struct ShellRenderer::Impl {
         std::swap(gpu->shadows, l.shadows);
         std::swap(gpu->light_count, l.count);
         std::swap(gpu->lighting, l.lighting);
+        std::swap(lighting_key, l.lighting_key);
+        std::swap(gpu->lights_stamp, l.lights_stamp);
         std::swap(shadows_valid, l.shadows_valid);
         std::swap(shadows_radius, l.shadows_radius);
     }
@@ -189,16 +193,17 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const Shel
         timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius);
         m.shadows_valid = true;
         m.shadows_radius = radius;
+        m.lighting_key.valid = false;  // the sums read the shadows
     }
 
     // Lighting pass, then the shells; with s.timed, wall-clock per pass between glFinish calls.
     if (s.timed) glFinish();
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
-    if (!floor_only && !m.reuse_lighting) m.lighting.run(gpu, s, view.eye);
+    timings_.lighting_ran = !floor_only && m.lighting.run(gpu, s, view.eye, m.lighting_key);
     if (s.timed) {
         glFinish();
-        timings_.lighting_wall_ms = floor_only ? 0.0 : wall_ms_since(t_pass);
+        timings_.lighting_wall_ms = timings_.lighting_ran ? wall_ms_since(t_pass) : 0.0;
         t_pass = Clock::now();
     }
     timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, s, floor_only, m.lighting);
@@ -256,18 +261,19 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     // again, with the storage grown to what the frame counted. One that still overflows has met the GPU's
     // storage-block limit, and that is an error: render() never returns an image with holes (draw(), the
     // real-time path, warns and grows instead, so that the next frame is whole).
-    struct Reuse {  // every draw after the first reuses its lighting; none after render() returns or throws
-        bool& flag;
-        ~Reuse() { flag = false; }
-    } reuse{impl_->reuse_lighting};
+    // The frames after the first have the same eye, lights and settings: they reuse its lighting sums whatever
+    // settings.reuse_lighting says (exact: the jitter moves only the image).
+    ShellSettings later = settings;
+    later.reuse_lighting = true;
+    const ShellSettings* frame_settings = &settings;
     double lighting_ms = 0;  // the render's lighting pass (its first frame)
     const auto draw_whole = [&] {
-        draw(camera, settings);
+        draw(camera, *frame_settings);
         lighting_ms += timings_.lighting_wall_ms;
-        reuse.flag = true;
+        frame_settings = &later;
         const FragmentLists* lists = impl_->shells_pass.lists();
         if (settings.compositing != Compositing::exact || !lists || lists->stats().dropped == 0) return;
-        draw(camera, settings);
+        draw(camera, later);
         const FragmentListStats& st = lists->stats();
         if (st.dropped > 0)
             throw Error::parameter("exact compositing",

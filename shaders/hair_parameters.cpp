@@ -146,4 +146,12 @@ void set_hair_parameter(HairParameters& hair, const std::string& key, const nloh
     throw Error::parameter(place, "'" + key + "' is not a hair parameter");
 }
 
+bool same_hair_parameters(const HairParameters& a, const HairParameters& b) {
+    for (const HairParamsField& f : kHairParamsFields)
+        if (!std::visit([&](auto member) { return a.fibre.*member == b.fibre.*member; }, f.member)) return false;
+    for (const LightingConfigField& f : kLightingConfigFields)
+        if (!std::visit([&](auto member) { return a.config.*member == b.config.*member; }, f.member)) return false;
+    return a.lobes == b.lobes && a.multiple == b.multiple && a.d_f == b.d_f;
+}
+
 }  // namespace coif::shading

@@ -39,6 +39,9 @@ struct HairParameters {
     float d_f = 0.7f;                           // Zinke's forward-scattering density factor d_f (000 eq. 2)
 };
 
+// Every field equal (the fibre's and the config's through kHairParamsFields and kLightingConfigFields, below).
+bool same_hair_parameters(const HairParameters& a, const HairParameters& b);
+
 // Throws coif::Error (place as in shading::validate) for a bad fibre, config, lobe set or d_f.
 void validate(const HairParameters& hair, const std::string& place = "hair parameters");
 

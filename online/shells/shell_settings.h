@@ -51,6 +51,10 @@ struct ShellSettings {
     // Skip the clusters whose bounding box lies outside the view (ShellTimings::clusters_drawn counts the others):
     // the image is the same; false draws every cluster (for tests).
     bool cull = true;
+    // Keep the lighting pass's sums while nothing they depend on changed (the eye, the lights, the hair's parameters,
+    // the painted absorption: online/shell_passes.h LightingKey), so a still view costs no lighting pass: bit-identical
+    // to lighting again. false lights every frame (benchmarks: the cost of a frame whose view moved).
+    bool reuse_lighting = true;
 };
 // The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
 // 1..4, for the exact compositing (the blended modes use MSAA: 1).

@@ -9,9 +9,18 @@
 #include "shaders/lighting/srbf_shadowed.glsl"
 #include "shaders/gl/srbf_light_buffer.glsl"
 uniform HairParams u_hair;
+// The lighting configuration, the lobes drawn (bit 0 R, bit 1 TT, bit 2 TRT) and dual scattering on/off: compile-time
+// constants when the program is built with online/lighting_uniforms.h srbf_variant_defines (llvmpipe runs every
+// branch of a shader under masks, so a switch read from a uniform costs both of its sides: the lighting pass took
+// 2.3x as long), else uniforms set by set_lighting_uniforms (the strand renderer).
+#ifndef SRBF_CONFIG
 uniform LightingConfig u_config;
-uniform int u_lobes;     // bit 0 R, bit 1 TT, bit 2 TRT
-uniform int u_multiple;  // dual scattering on/off
+uniform int u_lobes;
+uniform int u_multiple;
+#define SRBF_CONFIG u_config
+#define SRBF_LOBES u_lobes
+#define SRBF_MULTIPLE u_multiple
+#endif
 
 // A fibre point seen along V: its frame (T, r0, w = T × r0), the view's hair angles in it and the
 // parameter setup of the SRBF lobes, made once per point by srbf_point().
@@ -28,7 +37,7 @@ SrbfPoint srbf_point(HairParams hp, vec3 V, vec3 T, vec3 r0) {
     p.r0 = r0;
     p.w = cross(T, r0);
     hair_angles(V, T, r0, p.w, p.theta_o, p.phi_o);
-    srbf_point_setup(hp, u_config, p.f0123, p.f45);
+    srbf_point_setup(hp, SRBF_CONFIG, p.f0123, p.f45);
     return p;
 }
 
@@ -41,9 +50,9 @@ vec3 srbf_light_radiance(SrbfPoint p, float d_f, int j, vec2 sh) {
     hair_angles(lights[j].direction_lambda.xyz, p.T, p.r0, p.w, theta_j, phi_j);
     vec3 m = vec3(0.0);
     if (sh.x > MS_NEGLIGIBLE)
-        m = sh.x * srbf_single_lobes(p.hp, u_config, p.f0123, p.f45, u_lobes, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j);
-    if (u_multiple != 0)
-        m += srbf_shadowed_multiple(p.hp, u_config, p.f0123, p.f45, d_f, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j,
+        m = sh.x * srbf_single_lobes(p.hp, SRBF_CONFIG, p.f0123, p.f45, SRBF_LOBES, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j);
+    if (SRBF_MULTIPLE != 0)
+        m += srbf_shadowed_multiple(p.hp, SRBF_CONFIG, p.f0123, p.f45, d_f, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j,
                                     sh.x, sh.y);
     return lights[j].radiance.rgb * m;
 }

@@ -149,20 +149,29 @@ COIF_FN void N_TT_fit(float eta, vec3 sigma_a, float theta_d, bool paper_norm, O
 // the kernel is nearly flat over N_TT's support, the Gaussian of 000 eq. 16 is accurate and used;
 // in between the two are blended. (Thresholds measured: TT error 10 % -> 1.2 % of TT's energy.)
 
-// The offset h with φ(1, h) - π = d for |d| < π - 2 asin(1/η') (TT's φ decreases monotonically in
-// h): Newton steps safeguarded by bisection.
+// The offset h with φ(1, h) - π = d for |d| < π - 2 asin(1/η') (TT's φ decreases monotonically in h),
+// solved for a = asin h: φ(1, sin a) - π = 2 asin(sin a / η') - 2a is smooth on [-π/2, π/2], where in h
+// the slope is infinite at |h| = 1. TT_INVERT_STEPS Newton steps from the chord a = -(π/2) d / reach,
+// safeguarded by bisection. The error in h after 5 steps (measured in double precision over the whole
+// support): 8e-16 at η' = 1.2, 6e-5 at η' = 1.05 (η' ≥ η always; hair's η is 1.55). A fixed count, not a
+// test of convergence: a data-dependent exit made llvmpipe's lighting pass 1.6x slower. (Until now: 10
+// Newton steps in h from the line through the slope at 0.)
+const int TT_INVERT_STEPS = 5;
 COIF_FN float tt_invert(float d, float eta_p) {
-    float lo = -1.0;
-    float hi = 1.0;
-    float h = clamp(d / (2.0 / eta_p - 2.0), -0.999, 0.999);
-    for (int it = 0; it < 10; ++it) {
-        float f = 2.0 * safe_asin(h / eta_p) - 2.0 * safe_asin(h) - d;   // decreasing in h
-        if (f > 0.0) lo = h; else hi = h;
-        float df = 2.0 / sqrt(eta_p * eta_p - h * h) - 2.0 / sqrt(max(1.0 - h * h, 1e-12));
-        float hn = h - f / min(df, -1e-6);
-        h = (hn >= lo && hn <= hi) ? hn : 0.5 * (lo + hi);
+    float reach = COIF_PI - 2.0 * safe_asin(1.0 / eta_p);
+    float lo = -COIF_HALF_PI;
+    float hi = COIF_HALF_PI;
+    float a = clamp(-COIF_HALF_PI * d / max(reach, 1e-6), -COIF_HALF_PI, COIF_HALF_PI);
+    for (int it = 0; it < TT_INVERT_STEPS; ++it) {
+        float s = sin(a);
+        float f = 2.0 * safe_asin(s / eta_p) - 2.0 * a - d;   // decreasing in a
+        if (f > 0.0) lo = a; else hi = a;
+        float df = 2.0 * cos(a) / sqrt(max(eta_p * eta_p - s * s, 1e-12)) - 2.0;   // <= 2/η' - 2 < 0
+        float an = a - f / min(df, -1e-6);
+        an = (an >= lo && an <= hi) ? an : 0.5 * (lo + hi);
+        a = an;
     }
-    return h;
+    return sin(a);
 }
 
 // N_TT(θd, ψ) exactly: ½ A_TT(h) / |dφ/dh| at the single root h of φ(1,h) = ψ (000 eq. 9, 15).

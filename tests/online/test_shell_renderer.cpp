@@ -9,6 +9,7 @@
 
 #include "db/hrir_db.h"
 #include "db/satf.h"
+#include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "online/gl_context.h"
 #include "models/style_strands.h"
@@ -460,6 +461,49 @@ TEST(ShellRenderer, ParameterChangeShowsInTheNextFrameAndOnlyThen) {
     EXPECT_GT(mean_abs_difference(base, shadowed), 1e-4);
     EXPECT_GT(mean_abs_difference(base, own_shadow), 1e-4);
     EXPECT_EQ(base.pixels, back.pixels);
+}
+
+TEST(ShellRenderer, StillFramesReuseTheLightingAndAnyChangeLightsAgain) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    gl::ShellRenderer fresh(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    renderer.set_lights(two_lights());
+    fresh.set_lights(two_lights());
+    const Camera camera = front_camera(renderer);
+    gl::ShellSettings s;
+    s.samples = 1;
+    const Image first = renderer.render(camera, s);
+    EXPECT_TRUE(renderer.timings().lighting_ran);
+    // Nothing moved: the sums are reused, and the image is bit-identical to lighting again.
+    const Image still = renderer.render(camera, s);
+    EXPECT_FALSE(renderer.timings().lighting_ran);
+    gl::ShellSettings relight = s;
+    relight.reuse_lighting = false;
+    EXPECT_EQ(still.pixels, first.pixels);
+    EXPECT_EQ(renderer.render(camera, relight).pixels, first.pixels);
+    EXPECT_TRUE(renderer.timings().lighting_ran);
+    // A parameter change, a moved eye, new lights, painted absorption: each lights again, and the image is a fresh
+    // renderer's (bit-identical: the same passes on the same inputs).
+    gl::ShellSettings red = s;
+    red.hair.fibre.sigma_a = glm::vec3(0.1f, 1.5f, 3.0f);
+    const Image changed = renderer.render(camera, red);
+    EXPECT_TRUE(renderer.timings().lighting_ran);
+    EXPECT_EQ(changed.pixels, fresh.render(camera, red).pixels);
+    EXPECT_NE(changed.pixels, first.pixels);
+    const Camera moved = Camera::orbit(renderer.bounds_min(), renderer.bounds_max(), 0.3f, 0.1f, 96, 64);
+    EXPECT_EQ(renderer.render(moved, red).pixels, fresh.render(moved, red).pixels);
+    EXPECT_TRUE(renderer.timings().lighting_ran);
+    std::vector<SrbfLight> lights = two_lights();
+    lights[0].L *= 2.0f;
+    renderer.set_lights(lights);
+    fresh.set_lights(lights);
+    EXPECT_EQ(renderer.render(moved, red).pixels, fresh.render(moved, red).pixels);
+    EXPECT_TRUE(renderer.timings().lighting_ran);
+    AbsorptionMap dyed(1, 4, glm::vec3(2.0f, 0.5f, 0.2f));
+    renderer.set_absorption(&dyed);
+    fresh.set_absorption(&dyed);
+    EXPECT_EQ(renderer.render(moved, red).pixels, fresh.render(moved, red).pixels);
+    EXPECT_TRUE(renderer.timings().lighting_ran);
 }
 
 TEST(ShellRenderer, DefaultLightsShowLitHair) {
