@@ -169,9 +169,20 @@ std::vector<std::string> LightingPass::variant_defines(const ShellSettings& s) {
     return defines;
 }
 
+int lit_rows(int rows, int step) {
+    if (step >= 1 && rows >= 2 && (rows - 1) % step == 0) return (rows - 1) / step + 1;
+    std::string divisors;
+    for (int k = 1; k <= std::max(rows - 1, 1); ++k)
+        if ((rows - 1) % k == 0) divisors += (divisors.empty() ? "" : ", ") + std::to_string(k);
+    throw Error::parameter("lighting_step", "must divide the " + std::to_string(rows - 1) + " intervals between a cluster's " +
+                                                std::to_string(rows) + " lighting samples (" + divisors + "), not " +
+                                                std::to_string(step));
+}
+
 bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key) {
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
-                      key.tangent_spread == s.tangent_spread && key.eye == eye && key.lights_stamp == gpu.lights_stamp &&
+                      key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.eye == eye &&
+                      key.lights_stamp == gpu.lights_stamp &&
                       key.absorption_stamp == gpu.absorption_stamp;
     if (same && s.reuse_lighting) return false;
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
@@ -183,13 +194,17 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     const Program& program = *slot;
     program.use();
     bind_inputs(program, gpu, s);
-    glUniform1i(program.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
+    const int used = lit_rows(gpu.lighting_rows, s.lighting_step);
+    const GLuint invocations = static_cast<GLuint>(gpu.clusters) * static_cast<GLuint>(used);
+    glUniform1i(program.uniform("u_invocations"), static_cast<GLint>(invocations));
     glUniform1i(program.uniform("u_rows"), gpu.lighting_rows);
+    glUniform1i(program.uniform("u_step"), s.lighting_step);
+    glUniform1i(program.uniform("u_used"), used);
     glUniform3fv(program.uniform("u_eye"), 1, &eye.x);
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(static_cast<GLuint>((gpu.sample_count + 31) / 32), 1, 1);
+    glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true, s.hair, s.shadows, s.tangent_spread, eye, gpu.lights_stamp, gpu.absorption_stamp};
+    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, eye, gpu.lights_stamp, gpu.absorption_stamp};
     return true;
 }
 
@@ -199,6 +214,7 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
                                            DepthTest depth) {
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
+    // Every lighting_step-th row lit is still a subset of the mesh rows, so the per-vertex read stays exact.
     const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
     std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
                                      "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
@@ -245,6 +261,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         glUniform4fv(prog.uniform("u_atlas_scale"), kAtlasParts, &gpu.atlas_scale[0].x);
         glUniform1i(prog.uniform("u_hrir_length"), gpu.hrir_length);
         glUniform1i(prog.uniform("u_lighting_rows"), gpu.lighting_rows);
+        glUniform1i(prog.uniform("u_lighting_used"), lit_rows(gpu.lighting_rows, s.lighting_step));
         glUniform1i(prog.uniform("u_lighting_height"), static_cast<GLint>(gpu.clusters * kLightingTexels));
         glUniform1i(prog.uniform("u_s_t"), L.s_t);
         glUniform1i(prog.uniform("u_s_u"), L.s_u);

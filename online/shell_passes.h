@@ -90,9 +90,14 @@ struct LightingKey {
     shading::HairParameters hair;
     bool shadows = false;
     float tangent_spread = 0.0f;
+    int step = 1;
     glm::vec3 eye{0.0f};
     std::uint64_t lights_stamp = 0, absorption_stamp = 0;
 };
+
+// The lighting samples lit per cluster when every `step`-th of its `rows` is (ShellSettings::lighting_step): the first,
+// every step-th after it, and the last. Throws coif::Error::parameter unless step divides rows - 1.
+int lit_rows(int rows, int step);
 
 class LightingPass {
 public:

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "models/core/error.h"
 #include "models/core/log.h"
@@ -18,6 +19,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+}  // namespace
+
+namespace {
+// How far a skipped lighting sample's axis may lie from the interpolation between the lit ones (lighting_step_within):
+// 4°, about half of 000's β_R of 7.5°, the narrowest lobe. The default style's 90th percentile is 2.4° at step 2 and 6.8°
+// at step 4; Curly_100's fitted clusters are 5.6° at step 2 (docs/renderer.md, "Quality presets").
+constexpr float kLightingStepMaxAngle = 4.0f * static_cast<float>(kPi) / 180.0f;
 }  // namespace
 
 // The lights of one instance of the hair as its own space sees them, and what depends on them: their shadows and the
@@ -47,6 +55,16 @@ struct ShellRenderer::Impl {
     // the jitter moves only the image) reuses them (ShellSettings::reuse_lighting).
     LightingKey lighting_key;
     std::vector<InstanceLights> instances;  // draw_frame's, by instance index
+    std::map<int, int> lighting_steps;      // ShellSettings::lighting_step → the step this style allows (lighting_step_within)
+
+    int lighting_step(int wanted) {
+        auto it = lighting_steps.find(wanted);
+        if (it == lighting_steps.end()) {
+            lit_rows(shells.lighting_rows, wanted);  // validates
+            it = lighting_steps.emplace(wanted, lighting_step_within(shells, wanted, kLightingStepMaxAngle)).first;
+        }
+        return it->second;
+    }
 
     void swap(InstanceLights& l) {
         std::swap(gpu->lights, l.buffer);
@@ -200,13 +218,15 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const Shel
     if (s.timed) glFinish();
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
-    timings_.lighting_ran = !floor_only && m.lighting.run(gpu, s, view.eye, m.lighting_key);
+    ShellSettings lit = s;
+    lit.lighting_step = timings_.lighting_step = m.lighting_step(s.lighting_step);
+    timings_.lighting_ran = !floor_only && m.lighting.run(gpu, lit, view.eye, m.lighting_key);
     if (s.timed) {
         glFinish();
         timings_.lighting_wall_ms = timings_.lighting_ran ? wall_ms_since(t_pass) : 0.0;
         t_pass = Clock::now();
     }
-    timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, s, floor_only, m.lighting);
+    timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, lit, floor_only, m.lighting);
     timings_.clusters_drawn = (d.first ? 0 : timings_.clusters_drawn) + m.shells_pass.clusters_drawn();
     if (s.timed) {
         glFinish();

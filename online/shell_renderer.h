@@ -84,6 +84,7 @@ struct ShellTimings {
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact compositing's resolve (timed, Compositing::exact)
     std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
+    int lighting_step = 1;      // the last draw's step along the lighting samples (ShellSettings::lighting_step, as the style allows)
     bool lighting_ran = false;  // the last draw's lighting pass ran (false: its sums were reused, ShellSettings::reuse_lighting)
 };
 

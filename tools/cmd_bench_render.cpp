@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/core/error.h"
+#include "models/core/image_metrics.h"
 #include "models/style_fit.h"
 #include "online/benchmarks.h"
 #include "online/gl_context.h"
@@ -21,6 +22,7 @@ namespace {
 struct BenchRenderOptions {
     coif::cli::SceneOptions scene;
     std::string db, env, params, data = "../shared/data";
+    std::vector<std::string> qualities;
     int frames = 10, samples = 1, lighting_rows = 0, clusters = 64;
     bool json = false, models = true;
 };
@@ -45,6 +47,12 @@ void add_bench_render(CLI::App& root) {
     cmd->add_option("--db", o->db, "HRIR database; default: the cached default database (built on first use)");
     cmd->add_option("--env", o->env, "SRBF lights JSON or an environment map; default: the embedded 40 lights");
     cmd->add_option("--params", o->params, "Scattering parameters JSON (see coif render)");
+    std::vector<std::string> names;
+    for (const coif::gl::QualityPreset& p : coif::gl::kQualityPresets) names.emplace_back(p.name);
+    cmd->add_option("--quality", o->qualities,
+                    "Quality presets measured (default: all; see coif render --help); each beside full, the reference: its "
+                    "error against full's image, its frame against the floor of full's shells")
+        ->check(CLI::IsMember(names));
     cmd->add_option("--frames", o->frames, "Frames measured (after one warm-up frame)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--lighting-rows", o->lighting_rows,
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
@@ -63,10 +71,6 @@ void add_bench_render(CLI::App& root) {
         settings.samples = o->samples;
         if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
-        // Every frame lights again, as when the view moves; the still frame, below, reuses the lighting.
-        settings.reuse_lighting = false;
-        coif::gl::ShellSettings still = settings;
-        still.reuse_lighting = true;
         coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
         std::vector<BenchScene> models;
         if (o->models) {
@@ -92,26 +96,59 @@ void add_bench_render(CLI::App& root) {
         // The --style scene; each model is framed around its own sampled strands by the same orbit options.
         coif::gl::HairScene scene(coif::cli::hair_scene_desc(o->scene, std::move(inputs), o->db, o->lighting_rows));
         nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+        std::vector<coif::gl::Quality> qualities;
+        for (const coif::gl::QualityPreset& p : coif::gl::kQualityPresets)
+            if (o->qualities.empty() || std::find(o->qualities.begin(), o->qualities.end(), p.name) != o->qualities.end())
+                qualities.push_back(p.quality);
         const auto bench_scene = [&](const std::string& name, double fit_seconds, coif::gl::ShellRenderer& renderer,
                                      const coif::Camera& cam) {
+            const auto preset = [&](coif::gl::Quality q, bool reuse) {
+                coif::gl::ShellSettings s = settings;
+                coif::gl::apply_quality(s, q);
+                s.reuse_lighting = reuse;
+                return s;
+            };
+            // The reference image (full, over black for the radiance ratio) and the floor of full's shells.
+            coif::gl::ShellSettings full = preset(coif::gl::Quality::full, false);
+            full.background = glm::vec3(0.0f);
+            const coif::Image reference = renderer.render(cam, full);
+            const double shadows_ms = renderer.timings().shadows_ms;  // the first render of the lights runs the shadow pass
             const coif::gl::RenderTarget target = coif::gl::camera_target(cam, settings.samples);
             target.bind();
-            renderer.draw(cam, settings);  // the shadow pass runs on the first frame only (lights unchanged after)
+            renderer.draw(cam, full);  // the shadow pass ran in render(), on its first frame (lights unchanged after)
             scene.context->finish();
-            const double shadows_ms = renderer.timings().shadows_ms;
-            const coif::gl::ShellFrameTimes full =
-                coif::gl::time_shell_frames(renderer, cam, settings, false, o->frames);
-            const coif::gl::ShellFrameTimes floor =
-                coif::gl::time_shell_frames(renderer, cam, settings, true, o->frames);
-            const coif::gl::ShellFrameTimes unmoved = coif::gl::time_shell_frames(renderer, cam, still, false, o->frames);
-            const auto& st = renderer.stats();
-            rows.push_back({{"scene", name}, {"fit_s", fit_seconds}, {"clusters", st.clusters}, {"sectors", st.sectors},
-                            {"triangles", st.triangles}, {"lighting_samples", st.lighting_samples},
-                            {"shadow_grid", {st.grid_x, st.grid_y, st.grid_z}}, {"prepare_s", st.prepare_seconds},
-                            {"frame_ms", full.wall_ms}, {"fps", 1000.0 / full.wall_ms}, {"still_frame_ms", unmoved.wall_ms},
-                            {"shadow_pass_ms", shadows_ms}, {"lighting_pass_ms", full.lighting_ms},
-                            {"shells_ms", full.shells_ms}, {"resolve_ms", full.resolve_ms}, {"floor_ms", floor.wall_ms},
-                            {"floor_shells_ms", floor.shells_ms}, {"ratio_to_floor", full.wall_ms / floor.wall_ms}});
+            const coif::gl::ShellFrameTimes floor = coif::gl::time_shell_frames(renderer, cam, full, true, o->frames);
+            for (const coif::gl::Quality q : qualities) {
+                const coif::gl::ShellSettings moving = preset(q, false);
+                coif::gl::ShellSettings image_settings = moving;
+                image_settings.background = glm::vec3(0.0f);
+                const coif::CompareResult error =
+                    coif::compare_images(reference, renderer.render(cam, image_settings), coif::CompareOptions{}, "full",
+                                         coif::gl::quality_preset(q).name);
+                target.bind();
+                renderer.draw(cam, moving);  // warm-up: the variant's shaders compiled
+                scene.context->finish();
+                const coif::gl::ShellFrameTimes t = coif::gl::time_shell_frames(renderer, cam, moving, false, o->frames);
+                const coif::gl::ShellFrameTimes unmoved =
+                    coif::gl::time_shell_frames(renderer, cam, preset(q, true), false, o->frames);
+                const auto& st = renderer.stats();
+                const coif::AppearanceMetrics& a = error.appearance;
+                rows.push_back({{"scene", name}, {"quality", coif::gl::quality_preset(q).name}, {"fit_s", fit_seconds},
+                                {"clusters", st.clusters}, {"sectors", st.sectors}, {"triangles", st.triangles},
+                                {"lighting_samples", st.lighting_samples}, {"shadow_grid", {st.grid_x, st.grid_y, st.grid_z}},
+                                {"prepare_s", st.prepare_seconds}, {"shadow_pass_ms", shadows_ms},
+                                {"lighting_step", renderer.timings().lighting_step},
+                                {"frame_ms", t.wall_ms}, {"fps", 1000.0 / t.wall_ms},
+                                {"still_frame_ms", unmoved.wall_ms}, {"lighting_pass_ms", t.lighting_ms},
+                                {"shells_ms", t.shells_ms}, {"resolve_ms", t.resolve_ms}, {"full_floor_ms", floor.wall_ms},
+                                {"ratio_to_full_floor", t.wall_ms / floor.wall_ms},
+                                {"error_vs_full",
+                                 {{"blurred_psnr_db", a.blurred_psnr_db},
+                                  {"detail_ratio", a.detail_ratio},
+                                  {"radiance_ratio", {a.radiance_ratio[0], a.radiance_ratio[1], a.radiance_ratio[2]}},
+                                  {"mask_iou", a.mask_iou},
+                                  {"psnr_tone_mapped_db", error.tone_mapped.psnr_db}}}});
+            }
         };
         bench_scene(o->scene.style, 0.0, *scene.renderer, scene.camera);
         for (const BenchScene& sc : models) {
@@ -134,20 +171,33 @@ void add_bench_render(CLI::App& root) {
         std::printf("Wall-clock per pass, each waited for on the GPU. Per hairstyle, once: SATF parameters and look-up\n"
                     "(prepare); per light change: the shadow pass; per frame: the lighting pass, and the shells (re/α\n"
                     "look-up, lighting combine, blending or appending to the per-pixel lists), of which the exact\n"
-                    "compositing's per-pixel sort and blend is the resolve; the floor is the same shells rasterised and\n"
-                    "blended with a trivial shader. Every frame lights again, as when the view moves; a still frame (nothing\n"
-                    "moved: the lighting pass's sums reused) is the last figure.\n\n");
-        std::printf("%-22s %8s %9s %8s %7s %9s %9s %9s %9s %8s %7s\n", "scene", "clusters", "triangles", "prepare", "frame",
-                    "fps", "shadows", "lighting", "shells", "resolve", "floor");
-        std::printf("%-22s %8s %9s %8s %7s %9s %9s %9s %9s %8s %7s\n", "", "", "", "s", "ms", "", "ms(once)", "ms", "ms",
-                    "ms", "ms");
-        for (const auto& r : rows)
-            std::printf("%-22s %8zu %9zu %8.2f %7.1f %9.2f %9.1f %9.1f %9.1f %8.1f %7.1f   ratio %.2f, still frame %.1f ms\n",
-                        r["scene"].get<std::string>().c_str(), r["clusters"].get<std::size_t>(),
-                        r["triangles"].get<std::size_t>(), r["prepare_s"].get<double>(), r["frame_ms"].get<double>(),
-                        r["fps"].get<double>(), r["shadow_pass_ms"].get<double>(), r["lighting_pass_ms"].get<double>(),
-                        r["shells_ms"].get<double>(), r["resolve_ms"].get<double>(), r["floor_ms"].get<double>(),
-                        r["ratio_to_floor"].get<double>(), r["still_frame_ms"].get<double>());
+                    "compositing's per-pixel sort and blend is the resolve. Every frame lights again, as when the view\n"
+                    "moves; 'still' is a frame where nothing moved (the lighting pass's sums reused). x floor: the frame over\n"
+                    "full's shells rasterised and blended with a trivial shader. Error against full's image (coif compare's\n"
+                    "appearance metrics): blurred PSNR, detail ratio, radiance ratio (lowest and highest channel), mask IoU.\n");
+        std::string last;
+        for (const auto& r : rows) {
+            const std::string scene_name = r["scene"].get<std::string>();
+            if (scene_name != last) {
+                std::printf("\n%s: %zu clusters, %zu triangles, prepare %.2f s, shadow pass %.1f ms, floor of full %.1f ms\n",
+                            scene_name.c_str(), r["clusters"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
+                            r["prepare_s"].get<double>(), r["shadow_pass_ms"].get<double>(), r["full_floor_ms"].get<double>());
+                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %8s %7s %11s %6s\n", "quality", "frame", "fps", "lighting",
+                            "shells", "resolve", "x floor", "still", "bPSNR", "detail", "radiance", "IoU");
+                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %8s %7s %11s %6s\n", "", "ms", "", "ms", "ms", "ms", "",
+                            "ms", "dB", "", "", "");
+                last = scene_name;
+            }
+            const auto& e = r["error_vs_full"];
+            const auto rad = e["radiance_ratio"].get<std::vector<double>>();
+            std::printf("  %-7s %8.1f %6.2f %9.1f %8.1f %8.1f %8.2f %8.1f %8s %7.3f %5.3f-%5.3f %6.3f\n",
+                        r["quality"].get<std::string>().c_str(), r["frame_ms"].get<double>(), r["fps"].get<double>(),
+                        r["lighting_pass_ms"].get<double>(), r["shells_ms"].get<double>(), r["resolve_ms"].get<double>(),
+                        r["ratio_to_full_floor"].get<double>(), r["still_frame_ms"].get<double>(),
+                        coif::format_metric(e["blurred_psnr_db"].get<double>(), 1).c_str(), e["detail_ratio"].get<double>(),
+                        *std::min_element(rad.begin(), rad.end()), *std::max_element(rad.begin(), rad.end()),
+                        e["mask_iou"].get<double>());
+        }
     });
 }
 

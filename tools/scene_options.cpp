@@ -168,6 +168,16 @@ void ShellOptions::add_to(CLI::App* app) {
                     "frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
+    std::string presets;
+    std::vector<std::string> names;
+    for (const gl::QualityPreset& p : gl::kQualityPresets) {
+        presets += std::string("\n  ") + p.name + ": " + p.summary;
+        names.emplace_back(p.name);
+    }
+    app->add_option("--quality", quality,
+                    "Quality preset, a set of the choices that trade the image for time (after --params, which may name one "
+                    "too as \"quality\"; --compositing overrides it):" + presets)
+        ->check(CLI::IsMember(names));
     app->add_option("--compositing", compositing,
                     "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), sorted "
                     "(clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
@@ -188,6 +198,7 @@ gl::ShellSettings ShellOptions::settings(const SceneInputs& inputs) const {
     if (!params.empty()) s = gl::read_shell_settings(params, s);
     if (radius > 0) s.fiber_radius = radius;
     s.background = background_color(background);
+    if (!quality.empty()) gl::apply_quality(s, gl::parse_quality(quality, "", "option --quality"));
     if (!compositing.empty()) s.compositing = gl::parse_compositing(compositing, "", "option --compositing");
     return s;
 }

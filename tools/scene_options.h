@@ -87,10 +87,10 @@ gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs,
                                   int lighting_rows, const AbsorptionMap* absorption = nullptr);
 
 // The shell renderer's options beyond the scene, declared once for the commands that draw the shells (render, view):
-// --db, --env, --params, --absorption, --lighting-rows, --samples, --compositing, --radius, --background and
+// --db, --env, --params, --absorption, --lighting-rows, --samples, --quality, --compositing, --radius, --background and
 // --rotate-lights.
 struct ShellOptions {
-    std::string db, env, params, absorption, compositing;
+    std::string db, env, params, absorption, quality, compositing;
     int samples = 4;
     int lighting_rows = 0;
     float radius = 0.0f;

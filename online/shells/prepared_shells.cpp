@@ -193,4 +193,32 @@ float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::s
     return weight > 0 ? static_cast<float>(std::sqrt(angle2 / weight)) : 0.0f;
 }
 
+int lighting_step_within(const PreparedShells& shells, int wanted, float max_angle, std::vector<float>* worst) {
+    const int rows = shells.lighting_rows;
+    if (rows < 2 || shells.samples.empty()) return 1;
+    const std::size_t clusters = shells.samples.size() / static_cast<std::size_t>(rows);
+    const auto axis = [&](std::size_t c, int r) {
+        return glm::normalize(glm::vec3(shells.samples[c * static_cast<std::size_t>(rows) + static_cast<std::size_t>(r)].tangent));
+    };
+    int best = 1;
+    for (int k = 2; k <= std::min(wanted, rows - 1); ++k) {
+        if ((rows - 1) % k != 0) continue;
+        std::vector<float> angles;
+        for (std::size_t c = 0; c < clusters; ++c)
+            for (int r = 0; r < rows; ++r) {
+                if (r % k == 0) continue;
+                const int r0 = r / k * k;
+                const float f = static_cast<float>(r - r0) / static_cast<float>(k);
+                const glm::vec3 between = glm::normalize(glm::mix(axis(c, r0), axis(c, r0 + k), f));
+                angles.push_back(std::acos(std::clamp(glm::dot(axis(c, r), between), -1.0f, 1.0f)));
+            }
+        const auto p90 = angles.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(angles.size() - 1));
+        std::nth_element(angles.begin(), p90, angles.end());
+        if (worst) worst->push_back(*p90);
+        if (*p90 > max_angle) break;
+        best = k;
+    }
+    return best;
+}
+
 }  // namespace coif

@@ -114,4 +114,11 @@ void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::m
 // of range.
 float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::span<const std::uint32_t> strand_cluster,
                           const glm::mat3& orientation);
+// How far the lighting can skip samples along the clusters (ShellSettings::lighting_step): the largest step k ≤ `wanted`
+// dividing lighting_rows − 1 at which 90 % of the skipped samples' axis tangents lie within `max_angle` radians of the
+// (normalised) linear interpolation between the lit samples around them. A curled style keeps every sample, a smooth
+// one may skip: the R lobe's highlight follows the tangent within its width β_R. `worst` (if given) receives, per step
+// tried, that 90th-percentile angle.
+int lighting_step_within(const PreparedShells& shells, int wanted, float max_angle, std::vector<float>* worst = nullptr);
+
 }  // namespace coif

@@ -34,6 +34,41 @@ Compositing parse_compositing(const std::string& text, const std::string& file, 
     throw Error(file, place, "'" + text + "' is not sorted, unsorted or exact");
 }
 
+const QualityPreset& quality_preset(Quality q) {
+    for (const QualityPreset& p : kQualityPresets)
+        if (p.quality == q) return p;
+    throw Error::parameter("quality", "unknown preset");
+}
+
+Quality parse_quality(const std::string& text, const std::string& file, const std::string& place) {
+    std::string names;
+    for (const QualityPreset& p : kQualityPresets) {
+        if (text == p.name) return p.quality;
+        names += std::string(names.empty() ? "" : ", ") + p.name;
+    }
+    throw Error(file, place, "'" + text + "' is not a quality preset (" + names + ")");
+}
+
+void apply_quality(ShellSettings& s, Quality q) {
+    const QualityPreset& p = quality_preset(q);
+    s.compositing = p.compositing;
+    s.neighbours = p.neighbours;
+    s.fourier_order = p.fourier_order;
+    s.lighting_step = p.lighting_step;
+    s.tangent_spread = p.one_tangent ? 0.0f : -1.0f;
+}
+
+std::optional<Quality> quality_of(const ShellSettings& s) {
+    for (const QualityPreset& p : kQualityPresets) {
+        ShellSettings t = s;
+        apply_quality(t, p.quality);
+        if (t.compositing == s.compositing && t.neighbours == s.neighbours && t.fourier_order == s.fourier_order &&
+            t.lighting_step == s.lighting_step && t.tangent_spread == s.tangent_spread)
+            return p.quality;
+    }
+    return std::nullopt;
+}
+
 // ---- parameters file -------------------------------------------------------------------------------
 
 namespace {
@@ -41,6 +76,25 @@ namespace {
 ParamTable<ShellSettings> make_table() {
     using S = ShellSettings;
     ParamTable<S> t = lift(shading::hair_parameter_table(), &S::hair);
+    // First of the renderer's keys, so that the keys after it in the same file override its choices. Never written: a
+    // file holds the choices themselves. "custom" (what the settings read back as when they match no preset) changes
+    // nothing.
+    Param<S> quality{"quality", ParamKind::choice, "", 0, 0, false,
+                     "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
+                     "tangent_spread_deg); later keys override it",
+                     {}, {}, {}, {}};
+    for (const QualityPreset& p : kQualityPresets) quality.names.emplace_back(p.name);
+    quality.names.emplace_back("custom");
+    quality.get = [](const S& s, int) {
+        const std::optional<Quality> q = quality_of(s);
+        return static_cast<double>(q ? static_cast<int>(*q) : static_cast<int>(std::size(kQualityPresets)));
+    };
+    quality.set = [](S& s, int, double v) {
+        const int i = static_cast<int>(v);
+        if (i >= 0 && i < static_cast<int>(std::size(kQualityPresets))) apply_quality(s, kQualityPresets[i].quality);
+    };
+    quality.written = [](const S&) { return false; };
+    t.push_back(quality);
     t.push_back(real_param<S>("kappa_shadow", "per unit of summed alpha", 0.0, std::numeric_limits<double>::infinity(),
                               "004 eq. 12's within-cluster shadow kappa_shadow", [](auto& s) -> auto& { return s.kappa_shadow; }));
     t.push_back(int_param<S>("neighbours", 1, kMaxShellNeighbours, "records blended per sector on the GPU",
@@ -72,6 +126,10 @@ ParamTable<ShellSettings> make_table() {
                               [](auto& s) -> auto& { return s.lighting_per_fragment; }));
     t.push_back(int_param<S>("fourier_order", 1, 4, "harmonics of re in theta_l used",
                              [](auto& s) -> auto& { return s.fourier_order; }));
+    t.push_back(int_param<S>("lighting_step", 1, 32,
+                             "light every k-th lighting sample along a cluster, interpolate between (must divide the "
+                             "samples' intervals: 1, 2, 4 ... for the default mesh)",
+                             [](auto& s) -> auto& { return s.lighting_step; }));
     return t;
 }
 

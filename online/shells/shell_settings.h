@@ -3,6 +3,7 @@
 // are shaded and composited, and the parameters file that `coif render --params` (and `coif reference
 // --params`, `coif bench *`) read. GL-free.
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 
 #include "models/core/camera.h"
@@ -55,7 +56,47 @@ struct ShellSettings {
     // the painted absorption: online/shell_passes.h LightingKey), so a still view costs no lighting pass: bit-identical
     // to lighting again. false lights every frame (benchmarks: the cost of a frame whose view moved).
     bool reuse_lighting = true;
+    // The lighting pass lights every k-th lighting sample along each cluster (the first and the last among them) and the
+    // shells interpolate between those, k the largest step up to lighting_step that the style's curvature allows
+    // (online/shells/prepared_shells.h lighting_step_within; a curled style keeps every sample): 1 lights all (4 per HSV
+    // with the mesh rows), 2 half, 4 a quarter. It must divide the samples' intervals (32 for the default style's mesh).
+    // docs/renderer.md ("Quality presets") measures the cost and the error.
+    int lighting_step = 2;
 };
+// Quality presets (issue 18): named sets of the choices that trade the image against time. `full` is the reference of
+// the others: every lighting sample, two records per sector, re to its second harmonic, the fibres' measured tangents,
+// exact compositing. docs/renderer.md ("Quality presets") has each one's frame time and its error against full; the
+// default (kDefaultQuality, ShellSettings' own values) is the fastest within blurred PSNR ≥ 35 dB, detail ratio in
+// [0.9, 1.1] and radiance ratio in [0.97, 1.03] of full.
+enum class Quality { low, medium, high, full };
+struct QualityPreset {
+    Quality quality;
+    const char* name;
+    const char* summary;  // in words, for --help
+    Compositing compositing;
+    int neighbours, fourier_order, lighting_step;
+    bool one_tangent;  // light every fibre along its cluster's axis (tangent_spread 0) instead of the measured tilts
+};
+inline constexpr QualityPreset kQualityPresets[] = {
+    {Quality::low, "low", "clusters sorted and blended, one record per sector, re's first harmonic, a quarter of the "
+                          "lighting samples, fibres lit along the axis (previews, dragging)",
+     Compositing::sorted, 1, 1, 4, true},
+    {Quality::medium, "medium", "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples",
+     Compositing::exact, 1, 1, 4, false},
+    {Quality::high, "high", "exact compositing, two records per sector, half the lighting samples (the default)",
+     Compositing::exact, 2, 2, 2, false},
+    {Quality::full, "full", "exact compositing, two records per sector, every lighting sample: the reference of the others",
+     Compositing::exact, 2, 2, 1, false},
+};
+inline constexpr Quality kDefaultQuality = Quality::high;
+const QualityPreset& quality_preset(Quality q);
+// The preset named `text`; anything else throws coif::Error(file, place, …) listing the names.
+Quality parse_quality(const std::string& text, const std::string& file, const std::string& place);
+// Sets the preset's choices in `settings` (its other fields, the hair's among them, stay).
+void apply_quality(ShellSettings& settings, Quality q);
+// The preset whose choices `settings` has, if any.
+std::optional<Quality> quality_of(const ShellSettings& settings);
+
 // The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
 // 1..4, for the exact compositing (the blended modes use MSAA: 1).
 int supersampling(const ShellSettings& settings);

@@ -9,7 +9,7 @@
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
-// 27 floats in 8 RGBA32F texels per sample: texel (row, cluster · 8 + m); the 28th float is the
+// 27 floats in 8 RGBA32F texels per sample: texel (k, cluster · 8 + m) for the k-th sample lit along the cluster; the 28th float is the
 // sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV); the 29th is
 // the factor by which the lights' angles to the axis lengthen their paths across the own cluster in the
 // Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each light, averaged with the
@@ -22,16 +22,20 @@ layout(local_size_x = 32) in;
 #include "shaders/gl/lighting_samples.glsl"
 layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
 
-uniform int u_sample_count;
-uniform int u_rows;
+uniform int u_invocations;  // clusters × u_used
+uniform int u_rows;         // lighting samples per cluster
+uniform int u_step;         // every u_step-th of them is lit (ShellSettings::lighting_step), u_used per cluster,
+uniform int u_used;         // written to the first u_used texels of the cluster's rows
 uniform vec3 u_eye;
 
 void main() {
-    int i = int(gl_GlobalInvocationID.x);
-    if (i >= u_sample_count) return;
+    int invocation = int(gl_GlobalInvocationID.x);
+    if (invocation >= u_invocations) return;
+    int cluster = invocation / u_used;
+    int used = invocation - cluster * u_used;
+    int row = used * u_step;
+    int i = cluster * u_rows + row;  // the lighting sample
     LightingSample s = samples[i];
-    int cluster = i / u_rows;
-    int row = i - cluster * u_rows;
     HairParams hp = u_hair;
     if (u_absorption_on != 0) hp.sigma_a = texelFetch(u_absorption, ivec2(row, cluster), 0).rgb;
     vec3 T = normalize(s.tangent.xyz);
@@ -86,5 +90,5 @@ void main() {
     v[30] = 0.0;
     v[31] = 0.0;
     for (int m = 0; m < 8; ++m)
-        imageStore(u_out, ivec2(row, cluster * 8 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
+        imageStore(u_out, ivec2(used, cluster * 8 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
 }

@@ -6,12 +6,13 @@
 #define COIF_SHADERS_GL_SHELL_LIGHTING_FETCH_GLSL
 
 uniform sampler2D u_lighting;      // C_k, S_k per lighting sample: x = row along t, y = cluster · 8 + texel
-uniform int u_lighting_rows;
+uniform int u_lighting_rows;       // the texture's width: the lighting samples per cluster
+uniform int u_lighting_used;       // the rows the pass wrote, evenly along t from x = 0 (ShellSettings::lighting_step)
 uniform int u_lighting_height;
 
 // Texel m (0..7) of the sums at t ∈ [0, 1] of lighting cluster `cluster`.
 vec4 lighting_fetch(float t, uint cluster, int m) {
-    float lx = (clamp(t, 0.0, 1.0) * float(u_lighting_rows - 1) + 0.5) / float(u_lighting_rows);
+    float lx = (clamp(t, 0.0, 1.0) * float(u_lighting_used - 1) + 0.5) / float(u_lighting_rows);
     float ly = (float(cluster * 8u + uint(m)) + 0.5) / float(u_lighting_height);
     return textureLod(u_lighting, vec2(lx, ly), 0.0);
 }

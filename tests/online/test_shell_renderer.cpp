@@ -73,6 +73,7 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     for (const float spread : {0.0f, 0.5f, -1.0f})
     for (const bool multiple : {false, true}) {
     gl::ShellSettings settings;
+    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them
     settings.hair.multiple = multiple;
     settings.tangent_spread = spread;
     settings.shadows = false;  // one cluster; the shadowed case is ShadowsBetweenClusters… below
@@ -138,6 +139,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
     gl::ShellSettings settings;
+    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them
     settings.fiber_radius = 0.05f;  // fibres of radius r: τ = 2r × the strands' projected length per area
     // Rays start outside the own cluster (its share is each fragment's: shaders/lighting/own_cluster.glsl), so
     // c0 sees the light unshadowed.
@@ -334,6 +336,7 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
         renderer.set_lights(lights);
         const Camera camera = front_camera(renderer, 96, 160);
         gl::ShellSettings s;
+        s.lighting_step = 1;  // every sample lit: the two paths compared at the same samples
         s.samples = 1;
         s.shadows = false;
         s.tangent_spread = spread;
@@ -504,6 +507,33 @@ TEST(ShellRenderer, StillFramesReuseTheLightingAndAnyChangeLightsAgain) {
     fresh.set_absorption(&dyed);
     EXPECT_EQ(renderer.render(moved, red).pixels, fresh.render(moved, red).pixels);
     EXPECT_TRUE(renderer.timings().lighting_ran);
+}
+
+// ShellSettings::lighting_step: on a straight cluster (which allows any step) the lighting pass lights every k-th
+// sample, and those sums are the very ones that lighting every sample gives (bit for bit: the same code at the same
+// sample); the image between them differs only by the interpolation.
+TEST(ShellRenderer, LightingStepLightsEveryKthSampleAsStepOneDoes) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer);
+    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
+    target.bind();
+    gl::ShellSettings s;
+    s.lighting_step = 1;
+    renderer.draw(camera, s);
+    const std::vector<float> all = renderer.read_lighting();
+    const int rows = renderer.lighting_rows();
+    for (const int step : {2, 4}) {
+        s.lighting_step = step;
+        renderer.draw(camera, s);
+        EXPECT_EQ(renderer.timings().lighting_step, step);
+        const std::vector<float> some = renderer.read_lighting();  // the lit samples first in each cluster's rows
+        for (int k = 0; k <= (rows - 1) / step; ++k)
+            for (int q = 0; q < 27; ++q) EXPECT_EQ(some[k * 27 + q], all[k * step * 27 + q]) << step << " " << k;
+    }
+    s.lighting_step = 3;  // 3 does not divide the 32 intervals
+    EXPECT_THROW(renderer.draw(camera, s), Error);
 }
 
 TEST(ShellRenderer, DefaultLightsShowLitHair) {

@@ -181,5 +181,31 @@ TEST(RecordAtlas, BordersArePeriodic) {
             }
 }
 
+// lighting_step_within: lighting samples along a straight axis may all be skipped but the ends; an axis that bends by
+// 10° at every other sample (a kink per HSV row) puts each skipped sample 10° from the interpolation, more than the 4°
+// bound, so the step stays 1; a wider bound lets it skip.
+TEST(PreparedShells, LightingStepFollowsTheAxisCurvature) {
+    PreparedShells p;
+    p.lighting_rows = 33;
+    const auto add = [&](bool curled) {
+        for (int r = 0; r < p.lighting_rows; ++r) {
+            const float a = curled && r % 2 == 1 ? 0.174533f : 0.0f;  // 10°
+            LightingSample s;
+            s.tangent = glm::vec4(std::sin(a), std::cos(a), 0.0f, 0.0f);
+            p.samples.push_back(s);
+        }
+    };
+    const float four_degrees = 4.0f * 3.14159265f / 180.0f;
+    add(false);
+    EXPECT_EQ(lighting_step_within(p, 32, four_degrees), 32);
+    EXPECT_EQ(lighting_step_within(p, 3, four_degrees), 2);  // the largest divisor of 32 up to 3
+    add(true);  // the second cluster bends: the step of the whole style follows it
+    std::vector<float> worst;
+    EXPECT_EQ(lighting_step_within(p, 32, four_degrees, &worst), 1);
+    ASSERT_EQ(worst.size(), 1u);
+    EXPECT_NEAR(worst[0], 0.174533f, 1e-4f);
+    EXPECT_EQ(lighting_step_within(p, 32, 0.2f), 32);
+}
+
 }  // namespace
 }  // namespace coif
