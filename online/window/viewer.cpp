@@ -445,7 +445,7 @@ private:
         if (result_.frames == 0) ImGui::Text("%dx%d  the first frame", width, height);
         else  // the frame before this one, display included
             ImGui::Text("%dx%d  %.0f ms (%.1f fps)%s", width, height, result_.last_frame_ms,
-                        1000.0 / std::max(result_.last_frame_ms, 1e-3), dragging_ ? "  half size" : "");
+                        1000.0 / std::max(result_.last_frame_ms, 1e-3), dragging_ ? "  half size, quality low" : "");
         ImGui::Text("lighting %.0f ms, shells %.0f ms (resolve %.0f)", t.lighting_wall_ms, t.shells_wall_ms, t.resolve_wall_ms);
         ImGui::SliderFloat("exposure (stops)", &exposure_, -10.0f, 10.0f, "%.2f");
         ImGui::Checkbox("environment (B)", &environment_);
@@ -517,7 +517,7 @@ private:
         bool operator==(const FrameKey&) const = default;
     };
 
-    // Draws one frame: the hair over the background into a linear target (half size while the camera is dragged),
+    // Draws one frame: the hair over the background into a linear target (half size and the low quality preset while the camera is dragged),
     // then the display pass into the window. While nothing changes, the next kRefineGrid² frames draw the picture
     // again shifted within the pixel (the sub-pixel offsets of coif render's supersampling) and their average
     // replaces it (refined when still); after that, frames only display. ViewerOptions::offscreen_frames (the
@@ -559,7 +559,7 @@ private:
         char title[256];
         std::snprintf(title, sizeof title, "coif view  %dx%d  %.0f ms (lighting %.0f, shells %.0f)  %s%s%s", width, height,
                       result_.last_frame_ms, t.lighting_wall_ms, t.shells_wall_ms, environment_ ? "environment" : "background",
-                      divisor > 1 ? "  [half size while dragging]" : "", showing_refined_ ? "  [refined]" : "");
+                      divisor > 1 ? "  [half size, quality low, while dragging]" : "", showing_refined_ ? "  [refined]" : "");
         glfwSetWindowTitle(w, title);
     }
 
@@ -572,7 +572,9 @@ private:
         ShellRenderer& r = *scene_.renderer;
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
         glViewport(0, 0, width, height);
-        const ShellSettings& s = settings_;
+        // While the camera is dragged, the low preset (ShellSettings' quality presets) on top of the panel's parameters.
+        ShellSettings s = settings_;
+        if (dragging_) apply_quality(s, Quality::low);
         // A frame whose fragments overflowed the exact compositing's storage has holes; the storage has grown
         // since, so it is drawn again (the first frame, a closer view).
         for (int attempt = 0; attempt < 2; ++attempt) {
