@@ -126,6 +126,15 @@ FragmentLists::FragmentLists()
     check_errors("FragmentLists");
 }
 
+void FragmentLists::limit_capacity(std::uint64_t nodes) {
+    max_capacity_ = std::min(max_capacity_, std::max<std::uint64_t>(nodes, 1));
+    stats_.max_capacity = max_capacity_;
+    if (capacity_ > max_capacity_) {  // made smaller at the next begin()
+        capacity_ = 0;
+        stats_.capacity = 0;
+    }
+}
+
 void FragmentLists::reserve(std::uint64_t nodes) {
     nodes = std::min(nodes, max_capacity_);
     if (nodes <= capacity_) return;

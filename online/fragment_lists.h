@@ -100,6 +100,8 @@ public:
     void finish();
     FragmentCapture read_back() const;
     const FragmentListStats& stats() const { return stats_; }
+    // Holds the storage to at most `nodes` fragments (below the GPU's limit): for tests of what happens beyond it.
+    void limit_capacity(std::uint64_t nodes);
 
 private:
     void reserve(std::uint64_t nodes);

@@ -235,11 +235,16 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
     return *slot;
 }
 
+FragmentLists& ShellsPass::make_lists() {
+    if (!lists_) lists_ = std::make_unique<FragmentLists>();
+    return *lists_;
+}
+
 double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, const ShellDraw& d,
                         const ShellSettings& s, bool floor_only, const LightingPass& lighting) {
     const DiskLayout& L = gpu.layout;
     const bool exact = !floor_only && s.compositing == Compositing::exact;
-    if (exact && !lists_) lists_ = std::make_unique<FragmentLists>();
+    if (exact) make_lists();
     const FrameTarget& t = d.target;
     const int width = t.viewport.z, height = t.viewport.w;
     const DepthTest depth = floor_only || t.scene_depth == 0 ? DepthTest::none : t.depth_test;

@@ -138,6 +138,8 @@ public:
                 const ShellSettings& s, bool floor, const LightingPass& lighting);
     // The exact compositing's lists (made on first use), or null before.
     FragmentLists* lists() const { return lists_.get(); }
+    // The exact compositing's lists, made now if they were not.
+    FragmentLists& make_lists();
     // Clusters drawn by the last draw (those in the view, with ShellSettings::cull).
     std::size_t clusters_drawn() const { return drawn_; }
 

@@ -1,9 +1,12 @@
 #include "online/shell_renderer.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 
 #include "models/core/error.h"
@@ -55,6 +58,7 @@ struct ShellRenderer::Impl {
     // the jitter moves only the image) reuses them (ShellSettings::reuse_lighting).
     LightingKey lighting_key;
     std::vector<InstanceLights> instances;  // draw_frame's, by instance index
+    bool in_render = false;  // render() draws again or in tiles what overflows: no warning then
     std::map<int, int> lighting_steps;      // ShellSettings::lighting_step → the step this style allows (lighting_step_within)
 
     int lighting_step(int wanted) {
@@ -239,7 +243,7 @@ void ShellRenderer::finish_frame(const ShellSettings& s, bool floor_only) {
     Impl& m = *impl_;
     if (FragmentLists* lists = m.shells_pass.lists(); lists && !floor_only && s.compositing == Compositing::exact) {
         lists->finish();
-        if (lists->stats().dropped > 0)
+        if (lists->stats().dropped > 0 && !m.in_render)
             log_message(LogLevel::warning, "exact compositing dropped " + std::to_string(lists->stats().dropped) + " of " +
                                                std::to_string(lists->stats().fragments) + " fragments (storage for " +
                                                std::to_string(lists->stats().capacity) + "); the next frame has more");
@@ -279,52 +283,56 @@ const PreparedShells& ShellRenderer::prepared() const { return impl_->shells; }
 Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings) {
     // One frame of the image. An exact frame that overflowed its fragment storage left holes: it is drawn
     // again, with the storage grown to what the frame counted. One that still overflows has met the GPU's
-    // storage-block limit, and that is an error: render() never returns an image with holes (draw(), the
-    // real-time path, warns and grows instead, so that the next frame is whole).
+    // storage-block limit: it is drawn in tiles, each a part of the image seen through a projection that widens
+    // that part to a whole frame (so each holds its share of the fragments), and a tile that still overflows is an
+    // error. render() never returns an image with holes (draw(), the real-time path, warns and grows instead, so
+    // that the next frame is whole).
     // The frames after the first have the same eye, lights and settings: they reuse its lighting sums whatever
     // settings.reuse_lighting says (exact: the jitter moves only the image).
     ShellSettings later = settings;
     later.reuse_lighting = true;
     const ShellSettings* frame_settings = &settings;
+    timings_.tiles = 1;
+    struct InRender {
+        bool& flag;
+        explicit InRender(bool& f) : flag(f) { flag = true; }
+        ~InRender() { flag = false; }
+    } in_render(impl_->in_render);
     double lighting_ms = 0;  // the render's lighting pass (its first frame)
-    const auto draw_whole = [&] {
+    const auto overflowed = [&] {
+        const FragmentLists* lists = impl_->shells_pass.lists();
+        return settings.compositing == Compositing::exact && lists && lists->stats().dropped > 0;
+    };
+    const auto draw_whole = [&](RenderTarget& target) {
+        target.bind();
         draw(camera, *frame_settings);
         lighting_ms += timings_.lighting_wall_ms;
         frame_settings = &later;
-        const FragmentLists* lists = impl_->shells_pass.lists();
-        if (settings.compositing != Compositing::exact || !lists || lists->stats().dropped == 0) return;
+        if (!overflowed()) return target.read_back();
         draw(camera, later);
-        const FragmentListStats& st = lists->stats();
-        if (st.dropped > 0)
-            throw Error::parameter("exact compositing",
-                                   "this " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame has " +
-                                       std::to_string(st.fragments) + " fragments, and this GPU's fragment storage holds at most " +
-                                       std::to_string(st.max_capacity) +
-                                       " (its shader-storage block limit): use the sorted or blended compositing, or a smaller image");
+        if (!overflowed()) return target.read_back();
+        return render_tiles(camera, later);
     };
     const int f = supersampling(settings);
     if (f == 1) {  // the blended modes' MSAA, or one exact frame (its lists hold one sample per pixel)
         RenderTarget target(camera.width, camera.height, GL_RGBA16F,
                             settings.compositing == Compositing::exact ? 1 : settings.samples);
-        target.bind();
-        draw_whole();
+        Image image = draw_whole(target);
         timings_.lighting_wall_ms = lighting_ms;
-        return target.read_back();
+        return image;
     }
     // The exact compositing keeps one fragment list per pixel, so it antialiases by supersampling: f × f
     // frames, f = round(√samples), each shifted by a sub-pixel offset so that together they sample the
     // pixel centres of an f-times finer grid (the same positions, the same memory as one frame), averaged
     // (a box filter). It costs f² frames.
     RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
-    target.bind();
     Image sum;
     double shadows_ms = 0;  // the render's shadow pass, if it ran (on its first frame)
     for (int j = 0; j < f; ++j)
         for (int i = 0; i < f; ++i) {
             impl_->jitter = glm::vec2((i + 0.5f) / f - 0.5f, (j + 0.5f) / f - 0.5f);
-            draw_whole();
+            const Image frame = draw_whole(target);
             shadows_ms += timings_.shadows_ms;
-            const Image frame = target.read_back();
             if (sum.empty()) sum = Image(frame.width, frame.height, frame.channels, 0.0f);
             for (std::size_t k = 0; k < frame.pixels.size(); ++k) sum.pixels[k] += frame.pixels[k];
         }
@@ -334,6 +342,73 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     const float norm = 1.0f / static_cast<float>(f * f);
     for (float& v : sum.pixels) v *= norm;
     return sum;
+}
+
+Image ShellRenderer::render_tiles(const Camera& camera, const ShellSettings& settings) {
+    Impl& m = *impl_;
+    FragmentLists& lists = *m.shells_pass.lists();
+    // n × n tiles, each expected to hold a 1/n² share of the frame's fragments with a quarter to spare; a tile that
+    // still overflows (hair crowds the middle of a frame) is cut in four, and so on, down to 4 pixels a side.
+    const double share = static_cast<double>(lists.stats().fragments) * 1.25 /
+                         static_cast<double>(std::max<std::uint64_t>(lists.stats().max_capacity, 1));
+    const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(share))), 2, std::min({16, camera.width, camera.height}));
+    Image image(camera.width, camera.height, 4, 0.0f);
+    const glm::mat4 view = camera.view(), projection = camera.projection();
+    // The whole frame's sub-pixel shift, as ShellsPass applies it, in the whole frame's normalised device coordinates.
+    const glm::vec3 shift(2.0f * m.jitter.x / camera.width, -2.0f * m.jitter.y / camera.height, 0.0f);
+    int tiles = 0;
+    // Draws the part [x0, x1) × [y0, y1) of the frame (pixels, rows from the top) through a projection that widens it to
+    // the whole of normalised device space; true when its fragments fitted.
+    const auto draw_tile = [&](int x0, int y0, int x1, int y1) {
+        const int w = x1 - x0, h = y1 - y0;
+        const float cx = -1.0f + static_cast<float>(x0 + x1) / camera.width;
+        const float cy = 1.0f - static_cast<float>(y0 + y1) / camera.height;
+        const glm::mat4 widen =
+            glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(camera.width) / w, static_cast<float>(camera.height) / h, 1.0f)) *
+            glm::translate(glm::mat4(1.0f), glm::vec3(-cx, -cy, 0.0f));
+        RenderTarget target(w, h, GL_RGBA16F, 1);
+        ShellDraw d;
+        d.target.viewport = glm::ivec4(0, 0, w, h);
+        for (int attempt = 0; attempt < 2; ++attempt) {  // the storage grows to the tile's own count, up to its limit
+            target.bind();
+            glViewport(0, 0, w, h);
+            glClearColor(settings.background.x, settings.background.y, settings.background.z, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            passes(FrameView::of(view, widen * glm::translate(glm::mat4(1.0f), shift) * projection), d, settings, false);
+            finish_frame(settings, false);
+            const FragmentListStats& st = lists.stats();
+            if (st.dropped == 0) break;
+            if (st.fragments > st.max_capacity) return false;
+        }
+        if (lists.stats().dropped > 0) return false;
+        const Image part = target.read_back();
+        for (int y = 0; y < h; ++y)
+            std::copy_n(&part.pixels[static_cast<std::size_t>(y) * w * 4], static_cast<std::size_t>(w) * 4,
+                        &image.pixels[(static_cast<std::size_t>(y0 + y) * camera.width + x0) * 4]);
+        ++tiles;
+        return true;
+    };
+    const std::function<void(int, int, int, int)> region = [&](int x0, int y0, int x1, int y1) {
+        if (draw_tile(x0, y0, x1, y1)) return;
+        if (x1 - x0 < 8 || y1 - y0 < 8)
+            throw Error::parameter("exact compositing",
+                                   "this " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame has " +
+                                       std::to_string(lists.stats().fragments) + " fragments in its " + std::to_string(x1 - x0) +
+                                       "x" + std::to_string(y1 - y0) + " tile at (" + std::to_string(x0) + ", " +
+                                       std::to_string(y0) + "), and this GPU's fragment storage holds at most " +
+                                       std::to_string(lists.stats().max_capacity) +
+                                       " (its shader-storage block limit): use the sorted compositing");
+        const int xm = (x0 + x1) / 2, ym = (y0 + y1) / 2;
+        region(x0, y0, xm, ym);
+        region(xm, y0, x1, ym);
+        region(x0, ym, xm, y1);
+        region(xm, ym, x1, y1);
+    };
+    for (int ty = 0; ty < n; ++ty)
+        for (int tx = 0; tx < n; ++tx)
+            region(camera.width * tx / n, camera.height * ty / n, camera.width * (tx + 1) / n, camera.height * (ty + 1) / n);
+    timings_.tiles = tiles;
+    return image;
 }
 
 FragmentCapture ShellRenderer::capture_fragments(const Camera& camera, const ShellSettings& settings, Image* resolved) {
@@ -349,6 +424,8 @@ FragmentCapture ShellRenderer::capture_fragments(const Camera& camera, const She
     }
     return impl_->shells_pass.lists()->read_back();
 }
+
+void ShellRenderer::limit_fragment_storage(std::uint64_t nodes) { impl_->shells_pass.make_lists().limit_capacity(nodes); }
 
 FragmentListStats ShellRenderer::fragment_list_stats() const {
     const FragmentLists* lists = impl_->shells_pass.lists();

@@ -84,6 +84,7 @@ struct ShellTimings {
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact compositing's resolve (timed, Compositing::exact)
     std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
+    int tiles = 1;              // render()'s last frame: 1, or the tiles it was drawn in (beyond the fragment storage)
     int lighting_step = 1;      // the last draw's step along the lighting samples (ShellSettings::lighting_step, as the style allows)
     bool lighting_ran = false;  // the last draw's lighting pass ran (false: its sums were reused, ShellSettings::reuse_lighting)
 };
@@ -118,8 +119,9 @@ public:
     // compositing with samples > 1 averages f² frames, f = round(√samples), shifted to the pixel centres of
     // an f-times finer grid (supersampling with a box filter, at one frame's memory). The lighting pass runs for the
     // first frame only: the others have the same eye, lights and settings (timings().lighting_wall_ms is that pass). An exact frame that
-    // overflows its fragment storage is drawn again with the storage grown; throws coif::Error::parameter
-    // if it still overflows (the GPU's storage-block limit): never an image with holes.
+    // overflows its fragment storage is drawn again with the storage grown; one that still overflows (the GPU's
+    // storage-block limit) is drawn in tiles (timings().tiles), and a tile that overflows throws coif::Error::parameter:
+    // never an image with holes.
     Image render(const Camera& camera, const ShellSettings& settings);
     // Every shell fragment of this view (the exact compositing's lists, single sample; `settings`'
     // compositing and samples are ignored), drawn again with more storage if the first try overflowed.
@@ -127,6 +129,8 @@ public:
     FragmentCapture capture_fragments(const Camera& camera, const ShellSettings& settings, Image* resolved = nullptr);
     // The fragment lists' figures of the last draw with Compositing::exact (zero before any).
     FragmentListStats fragment_list_stats() const;
+    // Holds the exact compositing's fragment storage to `nodes` (tests: render()'s tiles without a huge image).
+    void limit_fragment_storage(std::uint64_t nodes);
 
     const ShellStats& stats() const { return stats_; }
     // The RMS tangent spread (radians) the lighting uses with `settings`: settings.tangent_spread when ≥ 0, else
@@ -158,6 +162,7 @@ public:
 private:
     void passes(const FrameView& view, const ShellDraw& d, const ShellSettings& s, bool floor);
     void finish_frame(const ShellSettings& s, bool floor);
+    Image render_tiles(const Camera& camera, const ShellSettings& settings);  // render()'s frame beyond the storage
     struct Impl;
     std::unique_ptr<Impl> impl_;
     ShellStats stats_;

@@ -191,6 +191,8 @@ void add_render(CLI::App& root) {
                                    {"triangles", st.triangles},
                                    {"lights", scene.lights.size()},
                                    {"render_milliseconds", render_ms},
+                                   {"tiles", renderer.timings().tiles},
+                                   {"lighting_step", renderer.timings().lighting_step},
                                    {"tangent_spread_deg", coif::degrees(double(renderer.tangent_spread(settings)))},
                                    {"fiber_radius", renderer.fiber_radius(settings)},
                                    {"coverage", coverage_json},
@@ -237,9 +239,9 @@ void add_render(CLI::App& root) {
         }
         if (settings.compositing == coif::gl::Compositing::exact) {
             const coif::gl::FragmentListStats fl = renderer.fragment_list_stats();
-            std::fprintf(stderr, "exact compositing: %llu fragments (%llu dropped), %llu pixels over the resolve's %d, resolve %.1f ms "
-                                 "wall-clock (last frame)\n",
-                         static_cast<unsigned long long>(fl.fragments), static_cast<unsigned long long>(fl.dropped),
+            std::fprintf(stderr, "exact compositing: %d tile(s); %llu fragments (%llu dropped), %llu pixels over the resolve's %d, "
+                                 "resolve %.1f ms wall-clock (last frame, its last tile)\n",
+                         renderer.timings().tiles, static_cast<unsigned long long>(fl.fragments), static_cast<unsigned long long>(fl.dropped),
                          static_cast<unsigned long long>(fl.pixels_over_resolve_limit), coif::gl::kResolveFragments,
                          renderer.timings().resolve_wall_ms);
         }

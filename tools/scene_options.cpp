@@ -37,8 +37,10 @@ glm::vec3 background_color(const std::vector<float>& v) {
     return {v[0], v[1], v[2]};
 }
 
-// Largest image side the commands accept (the GL target may allow less; it is checked too).
-constexpr int kMaxRenderSide = 16384;
+// Largest image side the commands accept (the GL target may allow less; it is checked too): 8192, what the exact
+// compositing honours in tiles (ShellRenderer::render: at most 16 x 16 of them; the default style at 8192 x 8192 needs
+// ~375 M fragments, 6 x 6 tiles of llvmpipe's 16.8 M), and a 1 GiB linear image.
+constexpr int kMaxRenderSide = 8192;
 
 HairStyle load_style(const std::string& path) {
     if (path == kDefaultStyleName) {
