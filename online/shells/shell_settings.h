@@ -79,11 +79,14 @@ struct QualityPreset {
 };
 inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::low, "low", "clusters sorted and blended, one record per sector, re's first harmonic, a quarter of the "
-                          "lighting samples, fibres lit along the axis (previews, dragging)",
+                          "lighting samples where the clusters are smooth, fibres lit along the axis (previews, dragging)",
      Compositing::sorted, 1, 1, 4, true},
-    {Quality::medium, "medium", "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples",
+    {Quality::medium, "medium",
+     "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples where the "
+     "clusters are smooth",
      Compositing::exact, 1, 1, 4, false},
-    {Quality::high, "high", "exact compositing, two records per sector, half the lighting samples (the default)",
+    {Quality::high, "high",
+     "exact compositing, two records per sector, half the lighting samples where the clusters are smooth (the default)",
      Compositing::exact, 2, 2, 2, false},
     {Quality::full, "full", "exact compositing, two records per sector, every lighting sample: the reference of the others",
      Compositing::exact, 2, 2, 1, false},
