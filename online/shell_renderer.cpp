@@ -22,9 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-}  // namespace
-
-namespace {
 // How far a skipped lighting sample's axis may lie from the interpolation between the lit ones (lighting_step_within):
 // 4°, about half of 000's β_R of 7.5°, the narrowest lobe. The default style's 90th percentile is 2.4° at step 2 and 6.8°
 // at step 4; Curly_100's fitted clusters are 5.6° at step 2 (docs/renderer.md, "Quality presets").
