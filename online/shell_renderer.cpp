@@ -136,14 +136,18 @@ void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_a
 
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {
     validate(settings);
-    const ShellSettings& s = settings;
-    glViewport(0, 0, camera.width, camera.height);
+    draw_view(FrameView::of(camera), camera.width, camera.height, impl_->jitter, settings, floor_only);
+}
+
+void ShellRenderer::draw_view(const FrameView& view, int width, int height, glm::vec2 jitter, const ShellSettings& s,
+                              bool floor_only) {
+    glViewport(0, 0, width, height);
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     ShellDraw d;
-    d.target.viewport = glm::ivec4(0, 0, camera.width, camera.height);
-    d.jitter = impl_->jitter;
-    passes(FrameView::of(camera), d, s, floor_only);
+    d.target.viewport = glm::ivec4(0, 0, width, height);
+    d.jitter = jitter;
+    passes(view, d, s, floor_only);
     finish_frame(s, floor_only);
 }
 
@@ -364,15 +368,10 @@ Image ShellRenderer::render_tiles(const Camera& camera, const ShellSettings& set
             glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(camera.width) / w, static_cast<float>(camera.height) / h, 1.0f)) *
             glm::translate(glm::mat4(1.0f), glm::vec3(-cx, -cy, 0.0f));
         RenderTarget target(w, h, GL_RGBA16F, 1);
-        ShellDraw d;
-        d.target.viewport = glm::ivec4(0, 0, w, h);
+        target.bind();
         for (int attempt = 0; attempt < 2; ++attempt) {  // the storage grows to the tile's own count, up to its limit
-            target.bind();
-            glViewport(0, 0, w, h);
-            glClearColor(settings.background.x, settings.background.y, settings.background.z, 1.0f);
-            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            passes(FrameView::of(view, widen * glm::translate(glm::mat4(1.0f), shift) * projection), d, settings, false);
-            finish_frame(settings, false);
+            draw_view(FrameView::of(view, widen * glm::translate(glm::mat4(1.0f), shift) * projection), w, h,
+                      glm::vec2(0.0f), settings, false);
             const FragmentListStats& st = lists.stats();
             if (st.dropped == 0) break;
             if (st.fragments > st.max_capacity) return false;

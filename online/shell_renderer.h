@@ -162,6 +162,8 @@ public:
 private:
     void passes(const FrameView& view, const ShellDraw& d, const ShellSettings& s, bool floor);
     void finish_frame(const ShellSettings& s, bool floor);
+    // draw()'s frame of any view: cleared to the background, drawn, finished (width × height at the origin).
+    void draw_view(const FrameView& view, int width, int height, glm::vec2 jitter, const ShellSettings& s, bool floor);
     Image render_tiles(const Camera& camera, const ShellSettings& settings);  // render()'s frame beyond the storage
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -47,12 +47,10 @@ void add_bench_render(CLI::App& root) {
     cmd->add_option("--db", o->db, "HRIR database; default: the cached default database (built on first use)");
     cmd->add_option("--env", o->env, "SRBF lights JSON or an environment map; default: the embedded 40 lights");
     cmd->add_option("--params", o->params, "Scattering parameters JSON (see coif render)");
-    std::vector<std::string> names;
-    for (const coif::gl::QualityPreset& p : coif::gl::kQualityPresets) names.emplace_back(p.name);
     cmd->add_option("--quality", o->qualities,
                     "Quality presets measured (default: all; see coif render --help); each beside full, the reference: its "
                     "error against full's image, its frame against the floor of full's shells")
-        ->check(CLI::IsMember(names));
+        ->check(CLI::IsMember(coif::gl::quality_names()));
     cmd->add_option("--frames", o->frames, "Frames measured (after one warm-up frame)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--lighting-rows", o->lighting_rows,
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")

@@ -40,6 +40,12 @@ const QualityPreset& quality_preset(Quality q) {
     throw Error::parameter("quality", "unknown preset");
 }
 
+std::vector<std::string> quality_names() {
+    std::vector<std::string> names;
+    for (const QualityPreset& p : kQualityPresets) names.emplace_back(p.name);
+    return names;
+}
+
 Quality parse_quality(const std::string& text, const std::string& file, const std::string& place) {
     std::string names;
     for (const QualityPreset& p : kQualityPresets) {
@@ -49,23 +55,22 @@ Quality parse_quality(const std::string& text, const std::string& file, const st
     throw Error(file, place, "'" + text + "' is not a quality preset (" + names + ")");
 }
 
-void apply_quality(ShellSettings& s, Quality q) {
-    const QualityPreset& p = quality_preset(q);
-    s.compositing = p.compositing;
-    s.neighbours = p.neighbours;
-    s.fourier_order = p.fourier_order;
-    s.lighting_step = p.lighting_step;
-    s.tangent_spread = p.one_tangent ? 0.0f : -1.0f;
+namespace {
+// The fields a preset sets (of a ShellSettings, const or not), in one place for setting and for comparing.
+template <class Settings>
+auto preset_choices(Settings& s) {
+    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread);
 }
+auto preset_choices(const QualityPreset& p) {
+    return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f);
+}
+}  // namespace
+
+void apply_quality(ShellSettings& s, Quality q) { preset_choices(s) = preset_choices(quality_preset(q)); }
 
 std::optional<Quality> quality_of(const ShellSettings& s) {
-    for (const QualityPreset& p : kQualityPresets) {
-        ShellSettings t = s;
-        apply_quality(t, p.quality);
-        if (t.compositing == s.compositing && t.neighbours == s.neighbours && t.fourier_order == s.fourier_order &&
-            t.lighting_step == s.lighting_step && t.tangent_spread == s.tangent_spread)
-            return p.quality;
-    }
+    for (const QualityPreset& p : kQualityPresets)
+        if (preset_choices(s) == preset_choices(p)) return p.quality;
     return std::nullopt;
 }
 
@@ -83,7 +88,7 @@ ParamTable<ShellSettings> make_table() {
                      "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
                      "tangent_spread_deg); later keys override it",
                      {}, {}, {}, {}};
-    for (const QualityPreset& p : kQualityPresets) quality.names.emplace_back(p.name);
+    quality.names = quality_names();
     quality.names.emplace_back("custom");
     quality.get = [](const S& s, int) {
         const std::optional<Quality> q = quality_of(s);

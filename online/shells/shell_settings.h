@@ -5,6 +5,8 @@
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "models/core/camera.h"
 #include "models/core/param_table.h"
@@ -93,6 +95,8 @@ inline constexpr QualityPreset kQualityPresets[] = {
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);
+// The presets' names, in kQualityPresets' order (the command lines' and the parameters file's choices).
+std::vector<std::string> quality_names();
 // The preset named `text`; anything else throws coif::Error(file, place, …) listing the names.
 Quality parse_quality(const std::string& text, const std::string& file, const std::string& place);
 // Sets the preset's choices in `settings` (its other fields, the hair's among them, stay).

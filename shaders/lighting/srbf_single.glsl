@@ -168,8 +168,7 @@ COIF_FN float tt_invert(float d, float eta_p) {
         if (f > 0.0) lo = a; else hi = a;
         float df = 2.0 * cos(a) / sqrt(max(eta_p * eta_p - s * s, 1e-12)) - 2.0;   // <= 2/η' - 2 < 0
         float an = a - f / min(df, -1e-6);
-        an = (an >= lo && an <= hi) ? an : 0.5 * (lo + hi);
-        a = an;
+        a = (an >= lo && an <= hi) ? an : 0.5 * (lo + hi);
     }
     return sin(a);
 }

@@ -172,7 +172,7 @@ TEST(ShellCompositing, FramesBeyondTheStorageAreDrawnInTiles) {
             EXPECT_LT(largest, 1e-3);
         }
         Scene starved(crossing_style());
-        starved.renderer.limit_fragment_storage(fragments / 2000);  // 16 x 16 tiles cannot hold it
+        starved.renderer.limit_fragment_storage(fragments / 2000);  // not even 4-pixel tiles hold it
         EXPECT_THROW(starved.renderer.render(starved.camera, s), Error);
     }
 }
