@@ -1,7 +1,8 @@
 # Every dependency comes from a Debian 12 package (cmake/apt-packages.txt); nothing is vendored. They come in
 # tiers, so that a build of the runtime alone (COIF_BUILD_AUTHORING=OFF) needs only the first:
 #   runtime    what coif::runtime links (load a cooked .coif asset and draw it): glm, nlohmann_json, OpenImageIO,
-#              xxHash, libepoxy, EGL, threads. cmake/coifConfig.cmake.in finds the same for a consumer.
+#              xxHash, libepoxy, EGL, threads, tinyobjloader (a character's body from .obj).
+#              cmake/coifConfig.cmake.in finds the same for a consumer.
 #   authoring  the offline tools and the database (coif::offline, coif::db, coif::scene): Ceres, Embree, FLANN.
 #   tools      the coif command and its viewer: CLI11, GLFW.
 #   tests      GoogleTest.
@@ -15,6 +16,7 @@ pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 find_package(Threads REQUIRED)
+find_package(tinyobjloader CONFIG REQUIRED)  # libtinyobjloader-dev: Wavefront .obj bodies (models/character.h)
 if(COIF_BUILD_AUTHORING)
   find_package(Ceres CONFIG REQUIRED)
   find_package(embree 3 CONFIG REQUIRED)   # Embree 3 (libembree-dev): curve ray tracing of the reference renderer

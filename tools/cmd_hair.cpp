@@ -1,8 +1,11 @@
-// coif hair inspect|convert — real strand files (.hair, .data).
+// coif hair inspect|convert — real strand files (.hair, .data, .tfx, .ply), and inspect of a character's body
+// (.tfxmesh, .obj) and strand skinning (.tfxbone).
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <utility>
 
+#include "models/character.h"
 #include "models/core/error.h"
 #include "models/strands.h"
 #include "tools/cli.h"
@@ -52,6 +55,66 @@ void print_stats(const fs::path& path, const coif::Strands& strands, const coif:
     std::printf("  axes                %s\n", st.axis_convention.c_str());
 }
 
+// A character's body mesh (models/character.h).
+nlohmann::json body_json(const fs::path& path, const coif::BodyMesh& m) {
+    return {{"file", path.string()},
+            {"format", coif::body_format_name(path)},
+            {"bones", m.bones.size()},
+            {"vertices", m.positions.size()},
+            {"triangles", m.triangles.size()},
+            {"bbox", {{"min", vec_json(m.bbox_min())}, {"max", vec_json(m.bbox_max())}}},
+            {"weights_renormalised", m.renormalised},
+            {"min_weight_sum", m.min_weight_sum},
+            {"units", m.axes_stated ? "centimetres, y-up (read from metres)" : "as stored (the format states none)"}};
+}
+
+// Which bones the strands lean on most: (name, strands whose largest weight is on it), most first.
+std::vector<std::pair<std::string, std::size_t>> main_bones(const coif::StrandSkinning& s) {
+    std::vector<std::size_t> count(s.bones.size(), 0);
+    for (const coif::BoneInfluence& b : s.strands) {
+        int best = 0;
+        for (int k = 1; k < 4; ++k)
+            if (b.weight[k] > b.weight[best]) best = k;
+        ++count[static_cast<std::size_t>(b.bone[best])];
+    }
+    std::vector<std::pair<std::string, std::size_t>> out;
+    for (std::size_t i = 0; i < count.size(); ++i)
+        if (count[i]) out.emplace_back(s.bones[i], count[i]);
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    return out;
+}
+
+nlohmann::json skinning_json(const fs::path& path, const coif::StrandSkinning& s) {
+    nlohmann::json bones = nlohmann::json::array();
+    for (const auto& [name, n] : main_bones(s)) bones.push_back({{"bone", name}, {"strands", n}});
+    return {{"file", path.string()},
+            {"format", "AMD TressFX .tfxbone"},
+            {"bones", s.bones.size()},
+            {"strands", s.strands.size()},
+            {"weights_renormalised", s.renormalised},
+            {"min_weight_sum", s.min_weight_sum},
+            {"main_bones", bones}};
+}
+
+void print_body(const fs::path& path, const coif::BodyMesh& m) {
+    const glm::vec3 lo = m.bbox_min(), hi = m.bbox_max();
+    std::printf("%s  (%s)\n", path.string().c_str(), coif::body_format_name(path).c_str());
+    std::printf("  bones               %zu\n  vertices            %zu\n  triangles           %zu\n", m.bones.size(), m.positions.size(),
+                m.triangles.size());
+    std::printf("  bounding box        min (%.2f, %.2f, %.2f)  max (%.2f, %.2f, %.2f)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    if (!m.bones.empty())
+        std::printf("  weights             %zu vertices renormalised (smallest sum %.3f)\n", m.renormalised, m.min_weight_sum);
+    std::printf("  units               %s\n", m.axes_stated ? "centimetres, y-up (read from metres)" : "as stored (the format states none)");
+}
+
+void print_skinning(const fs::path& path, const coif::StrandSkinning& s) {
+    std::printf("%s  (AMD TressFX .tfxbone)\n", path.string().c_str());
+    std::printf("  bones               %zu\n  strands             %zu\n", s.bones.size(), s.strands.size());
+    std::printf("  weights             %zu strands renormalised (smallest sum %.3f)\n", s.renormalised, s.min_weight_sum);
+    std::printf("  strands by main bone\n");
+    for (const auto& [name, n] : main_bones(s)) std::printf("    %6zu  %s\n", n, name.c_str());
+}
+
 void add_hair(CLI::App& root) {
     CLI::App* hair = coif::cli::noun(root, "hair", "Strand files: inspect and convert (.hair Yuksel, .data USC-HairSalon, .tfx AMD TressFX, .ply hairutil)");
 
@@ -65,13 +128,30 @@ void add_hair(CLI::App& root) {
         "Read strand files and print what they hold: strand and point counts, points per strand, bounding box,\n"
         "strand and segment lengths, waviness (chord/length), the direction the hair hangs, and the axis\n"
         "convention coif assumes. Coordinates are reported as read: as stored in the file (units are the file's own),\n"
-        "except TressFX's metres, read as centimetres.");
-    inspect->add_option("files", io->files, "Strand files (" + coif::strand_extensions() + ")")->required()->check(CLI::ExistingFile);
+        "except TressFX's metres, read as centimetres.\n"
+        "Also a character's body (" + coif::body_extensions() + ": bones, vertices, triangles, bounding box, weights) and\n"
+        "a TressFX strand skinning (.tfxbone: bones, strands, renormalised weights, the bones the strands lean on).");
+    inspect->add_option("files", io->files, "Strand files (" + coif::strand_extensions() + "), bodies (" + coif::body_extensions() + ") or .tfxbone")
+        ->required()
+        ->check(CLI::ExistingFile);
     coif::cli::add_json_flag(inspect, io->json);
-    coif::cli::examples(inspect, "  coif hair inspect ../shared/data/harolongo.data\n  coif hair inspect a.hair b.data --json");
+    coif::cli::examples(inspect, "  coif hair inspect ../shared/data/harolongo.data\n  coif hair inspect a.hair b.data --json\n"
+                                 "  coif hair inspect ../shared/data/Ratboy_body.tfxmesh ../shared/data/Ratboy_mohawk.tfxbone");
     inspect->callback([io] {
         nlohmann::json all = nlohmann::json::array();
         for (const auto& f : io->files) {
+            if (!coif::body_format_name(f).empty()) {
+                const coif::BodyMesh m = coif::read_body(f);
+                if (io->json) all.push_back(body_json(f, m));
+                else print_body(f, m);
+                continue;
+            }
+            if (fs::path(f).extension() == ".tfxbone") {
+                const coif::StrandSkinning s = coif::read_tfxbone(f);
+                if (io->json) all.push_back(skinning_json(f, s));
+                else print_skinning(f, s);
+                continue;
+            }
             const coif::Strands strands = coif::read_strands(f);
             const coif::StrandStats st = coif::strand_stats(strands);
             if (io->json) all.push_back(stats_json(f, strands, st));
