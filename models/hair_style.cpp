@@ -354,6 +354,11 @@ HairStyle parse_style(std::string_view text, const fs::path& file) {
     return style_from_json(parse_json(mark_non_finite(text), file), file);
 }
 
+bool style_axes_stated(const HairStyle& style) {
+    return style.source.is_object() && style.source.contains("axes") && style.source["axes"].is_string() &&
+           style.source["axes"].get<std::string>() == kStyleAxesYUp;
+}
+
 HairStyle read_style(const fs::path& path) {
     const std::vector<std::byte> bytes = read_file_bytes(path);
     return parse_style(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);

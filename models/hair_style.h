@@ -105,6 +105,10 @@ struct MacroCluster {
     std::vector<std::size_t> members;  // the prototype first, then its instances
 };
 
+// The value of a style's source "axes" when its coordinates are coif's y-up frame already (coif style import oriented
+// the strands, or their format states its axes): the renderer then turns nothing (style_orientation).
+inline constexpr const char* kStyleAxesYUp = "y-up";
+
 struct HairStyle {
     std::string name;
     std::string units;
@@ -118,6 +122,9 @@ struct HairStyle {
     std::vector<MacroCluster> macro_clusters() const;
     std::size_t prototype_count() const;
 };
+
+// Whether the style's source says it is in coif's y-up frame already (kStyleAxesYUp).
+bool style_axes_stated(const HairStyle& style);
 
 HairStyle read_style(const std::filesystem::path& path);
 HairStyle parse_style(std::string_view text, const std::filesystem::path& name);

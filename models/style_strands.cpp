@@ -146,6 +146,8 @@ Strands sample_strands(const HairStyle& style, const StrandSampling& o, std::vec
         }
     }
     if (out.strand_count() == 0) out.offsets.clear();
+    // A style in coif's y-up frame already (kStyleAxesYUp) is not turned again by whoever orients its strands.
+    out.axes_stated = style_axes_stated(style);
     return out;
 }
 

@@ -30,10 +30,7 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
       hrir_length(a.hrir_length),
       atlas_lo(a.lo),
       atlas_scale(a.scale),
-      re_norm(a.re_norm),
-      grid_origin(grid.origin),
-      grid_extent(grid.extent()),
-      voxel(grid.voxel) {
+      re_norm(a.re_norm) {
     GLint max_tex = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
     if (a.width > max_tex || a.height > max_tex)
@@ -43,10 +40,7 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
     atlas = make_texture_2d(GL_RGBA8, a.width, a.height, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
     glTextureSubImage2D(atlas.id(), 0, 0, 0, a.width, a.height, GL_RGBA, GL_UNSIGNED_BYTE, a.texels.data());
 
-    density = make_texture_3d(GL_RGBA32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
-    glTextureSubImage3D(density.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RGBA, GL_FLOAT, grid.diagonal_xy.data());
-    density_off = make_texture_3d(GL_RG32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
-    glTextureSubImage3D(density_off.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RG, GL_FLOAT, grid.off_diagonal.data());
+    set_grid(grid);
 
     vertices = make_buffer(shells.vertices.data(), shells.vertices.size() * sizeof(ShellVertex));
     indices = make_buffer(shells.indices.data(), shells.indices.size() * sizeof(std::uint32_t));
@@ -88,6 +82,28 @@ void ShellGpu::set_lights(std::span<const SrbfLight> l) {
     shadows = make_buffer(nullptr, l.size() * sample_count * sizeof(glm::vec2));
 }
 
+void ShellGpu::set_grid(const DensityGrid& grid) {
+    density = make_texture_3d(GL_RGBA32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(density.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RGBA, GL_FLOAT, grid.diagonal_xy.data());
+    density_off = make_texture_3d(GL_RG32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(density_off.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RG, GL_FLOAT, grid.off_diagonal.data());
+    grid_origin = grid.origin;
+    grid_extent = grid.extent();
+    voxel = grid.voxel;
+}
+
+void ShellGpu::set_body(const std::vector<std::uint8_t>& occupancy, glm::ivec3 dims) {
+    body_on = !occupancy.empty();
+    if (!body_on) return;
+    body = make_texture_3d(GL_R8, dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    std::vector<std::uint8_t> texels(occupancy.size());  // 0 or 1 → the normalised texel's 0 or 1 (255)
+    for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = occupancy[i] ? 255 : 0;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of dims.x bytes, not padded to 4
+    glTextureSubImage3D(body.id(), 0, 0, 0, 0, dims.x, dims.y, dims.z, GL_RED, GL_UNSIGNED_BYTE, texels.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    check_errors("ShellGpu::set_body");
+}
+
 void ShellGpu::set_absorption(const AbsorptionMap* map) {
     absorption_stamp = next_stamp();
     if (!map) {
@@ -115,8 +131,15 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 double ShadowPass::run(const ShellGpu& gpu, float fibre_width) const {
     glFinish();
     const auto t0 = Clock::now();
-    const Program& p = program_;
+    if (gpu.body_on && !with_body_) with_body_ = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_shadow.comp"}, std::vector<std::string>{"SHADOW_BODY 1"});
+    const Program& p = gpu.body_on ? *with_body_ : program_;
     p.use();
+    if (gpu.body_on) {
+        glBindTextureUnit(2, gpu.body.id());
+        glUniform1i(p.uniform("u_body"), 2);
+        glUniform1f(p.uniform("u_body_opacity"), kBodyOpacity / gpu.voxel);
+        glUniform1f(p.uniform("u_body_max_depth"), kBodyMaxDepth);
+    }
     glBindTextureUnit(0, gpu.density.id());
     glUniform1i(p.uniform("u_density"), 0);
     glBindTextureUnit(1, gpu.density_off.id());

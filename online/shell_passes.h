@@ -62,12 +62,18 @@ struct ShellGpu {
     int light_count = 0;
     Texture absorption;  // RGBA32F σa per (lighting row, cluster), when absorption_on
     bool absorption_on = false;
+    Texture body;        // R8 on the shadow grid: a character's body as an occluder (voxelize_body), when body_on
+    bool body_on = false;
     // Changed by set_lights and set_absorption, each to a number never used before: what the lighting pass's sums
     // were made from (LightingKey).
     std::uint64_t lights_stamp = 0, absorption_stamp = 0;
 
     void set_lights(std::span<const SrbfLight> lights);
     void set_absorption(const AbsorptionMap* map);
+    // Uploads the shadow grid (the constructor's, or one extended to hold a body).
+    void set_grid(const DensityGrid& grid);
+    // The body's voxels on the shadow grid (voxelize_body), or empty: no body.
+    void set_body(const std::vector<std::uint8_t>& occupancy, glm::ivec3 dims);
 };
 
 class ShadowPass {
@@ -80,6 +86,7 @@ public:
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};
+    mutable std::unique_ptr<Program> with_body_;  // the variant that also marches a body (made on first use)
 };
 
 // What a lighting pass's sums are a function of: the hair's parameters, the settings the pass reads, the eye (in the

@@ -12,6 +12,7 @@
 #include "models/core/error.h"
 #include "models/core/log.h"
 #include "models/core/units.h"
+#include "online/body_pass.h"
 #include "online/shell_passes.h"
 #include "online/shells/record_atlas.h"
 #include "online/shells/shadow_grid.h"
@@ -57,6 +58,8 @@ struct ShellRenderer::Impl {
     std::vector<InstanceLights> instances;  // draw_frame's, by instance index
     bool in_render = false;  // render() draws again or in tiles what overflows: no warning then
     std::map<int, int> lighting_steps;      // ShellSettings::lighting_step → the step this style allows (lighting_step_within)
+    std::unique_ptr<BodyPass> body;         // set_body's, drawn by draw_view
+    DensityGrid grid;                       // the hair's own shadow grid (set_body extends a copy of it)
 
     int lighting_step(int wanted) {
         auto it = lighting_steps.find(wanted);
@@ -114,10 +117,11 @@ ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>
     stats_.atlas_height = atlas.height;
     stats_.re_norm = atlas.re_norm;
     stats_.shadow_strands = cooked.shadow_strands;
-    stats_.grid_x = grid.dims.x;
-    stats_.grid_y = grid.dims.y;
-    stats_.grid_z = grid.dims.z;
-    stats_.voxel = grid.voxel;
+    m.grid = std::move(cooked.grid);  // kept: set_body grows a copy of it
+    stats_.grid_x = m.grid.dims.x;
+    stats_.grid_y = m.grid.dims.y;
+    stats_.grid_z = m.grid.dims.z;
+    stats_.voxel = m.grid.voxel;
     stats_.tangent_spread = cooked.tangent_spread;
     stats_.auto_fiber_radius = cooked.auto_fiber_radius;
     bounds_min_ = p.bounds_min;
@@ -134,6 +138,25 @@ void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
 
 void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_absorption(map); }
 
+void ShellRenderer::set_body(const BodyMesh* body, const glm::mat3& orientation) {
+    Impl& m = *impl_;
+    m.body = body ? std::make_unique<BodyPass>(*body, orientation) : nullptr;
+    // The hair's grid, grown to hold the body beside it (extend_grid), and the body's voxels on it.
+    DensityGrid grown;
+    if (body) {
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const glm::vec3& p : body->positions) lo = glm::min(lo, orientation * p), hi = glm::max(hi, orientation * p);
+        grown = extend_grid(m.grid, lo, hi);
+    }
+    const DensityGrid& grid = body ? grown : m.grid;
+    m.gpu->set_grid(grid);
+    m.gpu->set_body(body ? voxelize_body(*body, orientation, grid) : std::vector<std::uint8_t>{}, grid.dims);
+    stats_.grid_x = grid.dims.x, stats_.grid_y = grid.dims.y, stats_.grid_z = grid.dims.z;
+    m.shadows_valid = false;
+    m.lighting_key.valid = false;
+    for (InstanceLights& il : m.instances) il.shadows_valid = false, il.lighting_key.valid = false;
+}
+
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {
     validate(settings);
     draw_view(FrameView::of(camera), camera.width, camera.height, impl_->jitter, settings, floor_only);
@@ -147,6 +170,12 @@ void ShellRenderer::draw_view(const FrameView& view, int width, int height, glm:
     ShellDraw d;
     d.target.viewport = glm::ivec4(0, 0, width, height);
     d.jitter = jitter;
+    if (impl_->body && !floor_only) {  // the body first, opaque; the hair over it, behind it hidden
+        d.target.scene_depth = impl_->body->draw(view, jitter, width, height, impl_->gpu->lights.id(), impl_->gpu->light_count,
+                                                 s.background);
+        d.target.depth_test = DepthTest::less_equal;
+        d.target.over = true;
+    }
     passes(view, d, s, floor_only);
     finish_frame(s, floor_only);
 }

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "models/absorption_map.h"
+#include "models/character.h"
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "online/fragment_lists.h"
@@ -103,6 +104,11 @@ public:
     // Painted absorption (one row per cluster of the style, any number of samples along t), or null:
     // σa from the settings everywhere. Throws coif::Error::parameter if the cluster count differs.
     void set_absorption(const AbsorptionMap* map);
+    // A character's body (models/character.h), turned by `orientation` (the hair's: the body is in its strands' file
+    // frame), or null: none. It shadows the hair in every draw (voxelized into the shadow grid: voxelize_body, within the
+    // hair's box), and draw() and render() draw it opaque behind and between the hair's fragments (online/body_pass.h);
+    // draw_frame does not draw it (the host draws its own scene and passes its depth). Keeps no reference to `body`.
+    void set_body(const BodyMesh* body, const glm::mat3& orientation = glm::mat3(1.0f));
     // Draws into the bound framebuffer (cleared to the background first). `floor` draws the same
     // shells in the same order with a trivial shader (the floor of `coif bench render`).
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);

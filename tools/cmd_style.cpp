@@ -187,6 +187,7 @@ void add_style(CLI::App& root) {
                         {"strands", strands.strand_count()},
                         {"points", strands.points.size()},
                         {"rotation_applied", {{r[0][0], r[1][0], r[2][0]}, {r[0][1], r[1][1], r[2][1]}, {r[0][2], r[1][2], r[2][2]}}},
+                        {"axes", fit.orient_y_up || strands.axes_stated ? coif::kStyleAxesYUp : "as in the source file"},
                         {"fit", {{"clusters_requested", fit.clusters}, {"coverage", fit.coverage}, {"macro_tolerance", fit.macro_tolerance},
                                  {"store_every", fit.store_every}, {"seed", fit.seed}}},
                         {"fitting_error", error_json(e)},

@@ -146,6 +146,7 @@ gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs,
     d.log = &std::cerr;
     d.lighting_rows = lighting_rows;
     d.absorption = absorption;
+    d.body = std::move(inputs.body);
     d.framing = scene.shell_framing();
     return d;
 }
@@ -161,6 +162,11 @@ void ShellOptions::add_to(CLI::App* app) {
     app->add_option("--absorption", absorption,
                     "Painted absorption map (coif style paint-absorption): σa per cluster and along it, instead of "
                     "--params' sigma_a");
+    app->add_option("--body", body,
+                    "A character's body (" + body_extensions() + ") drawn opaque under the hair: it hides the hair behind it "
+                    "and shadows the hair (within the hair's box). TressFX's .tfxmesh is read from metres into centimetres, "
+                    "the frame of its .tfx strands; an .obj is kept as stored, and must be in the strand file's units and axes")
+        ->check(CLI::ExistingFile);
     app->add_option("--lighting-rows", lighting_rows,
                     "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))
@@ -204,6 +210,7 @@ gl::ShellSettings ShellOptions::settings(const SceneInputs& inputs) const {
 SceneInputs ShellOptions::read_inputs(const SceneOptions& scene) const {
     SceneInputs in = read_scene_inputs(scene, env);
     in.lights = rotate_srbf_lights_y(in.lights, lights_rotation(rotate_lights_deg));
+    if (!body.empty()) in.body = read_body(body);
     return in;
 }
 

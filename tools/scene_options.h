@@ -76,6 +76,7 @@ struct SceneInputs {
     std::vector<SrbfLight> lights;
     HairStyle style;                     // empty when --style names a `.coif` asset
     std::optional<CookedShells> cooked;  // the asset, when --style names one (online/shells/hair_asset.h)
+    std::optional<BodyMesh> body;        // --body, when given (the shell commands)
     std::size_t clusters() const { return cooked ? cooked->shells.clusters() : style.clusters.size(); }
 };
 SceneInputs read_scene_inputs(const SceneOptions& scene, const std::string& env);
@@ -87,10 +88,10 @@ gl::HairSceneDesc hair_scene_desc(const SceneOptions& scene, SceneInputs inputs,
                                   int lighting_rows, const AbsorptionMap* absorption = nullptr);
 
 // The shell renderer's options beyond the scene, declared once for the commands that draw the shells (render, view):
-// --db, --env, --params, --absorption, --lighting-rows, --samples, --quality, --compositing, --radius, --background and
-// --rotate-lights.
+// --db, --env, --params, --absorption, --body, --lighting-rows, --samples, --quality, --compositing, --radius,
+// --background and --rotate-lights.
 struct ShellOptions {
-    std::string db, env, params, absorption, quality, compositing;
+    std::string db, env, params, absorption, quality, compositing, body;
     int samples = 4;
     int lighting_rows = 0;
     float radius = 0.0f;
@@ -100,7 +101,7 @@ struct ShellOptions {
     void add_to(CLI::App* app);
     // The parameters to draw with: an asset's baked ones (else the library's), then --params, then the options.
     gl::ShellSettings settings(const SceneInputs& inputs) const;
-    // read_scene_inputs with these options' --env, the lights turned by --rotate-lights.
+    // read_scene_inputs with these options' --env, the lights turned by --rotate-lights, and the --body mesh.
     SceneInputs read_inputs(const SceneOptions& scene) const;
     // The --absorption map for these inputs' clusters, when given.
     std::optional<AbsorptionMap> absorption_map(const SceneInputs& inputs) const;

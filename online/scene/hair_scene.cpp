@@ -73,6 +73,18 @@ HairScene::HairScene(HairSceneDesc desc)
         v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows);
     }
     renderer = std::move(v.renderer);
+    if (desc.body) {
+        const glm::mat3 orientation = desc.cooked ? glm::mat3(1.0f) : style_orientation(style);
+        renderer->set_body(&*desc.body, orientation);
+        if (!desc.framing.box) {  // frame the character: the hair's box and the body's
+            for (const glm::vec3& p : desc.body->positions) {
+                v.frame_min = glm::min(v.frame_min, orientation * p);
+                v.frame_max = glm::max(v.frame_max, orientation * p);
+            }
+            v.camera = desc.framing.view.around(v.frame_min, v.frame_max);
+            refuse_eye_inside(v.camera, *renderer);
+        }
+    }
     camera = v.camera;
     frame_min = v.frame_min;
     frame_max = v.frame_max;

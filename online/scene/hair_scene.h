@@ -15,6 +15,7 @@
 #include "db/hrir_db.h"
 #include "db/satf.h"
 #include "models/absorption_map.h"
+#include "models/character.h"
 #include "models/core/camera.h"
 #include "models/hair_style.h"
 #include "models/strands.h"
@@ -52,6 +53,10 @@ struct HairSceneDesc {
     std::ostream* log = nullptr;       // the default database's messages (which file, building it); null: none
     int lighting_rows = 0;             // ShellRenderer's lighting_rows_per_hsv (0: one per mesh row)
     const AbsorptionMap* absorption = nullptr;  // painted σa, or null; must outlive the scene
+    // A character's body under the hair (ShellRenderer::set_body), in the strand file's frame: turned as the style's
+    // strands are (style_orientation); for an asset, taken as in the asset's own (drawn) frame. Unless framing.box is
+    // set, the camera frames the hair and the body together.
+    std::optional<BodyMesh> body;
     SceneFraming framing;
     // Make a headless GL context (EGL) for the scene; false: draw with the caller's, current on this thread (a
     // window's: coif view).

@@ -65,6 +65,7 @@ bool box_in_view(const glm::mat4& vp, const ClusterBox& box) {
 }
 
 glm::mat3 style_orientation(const HairStyle& style) {
+    if (style_axes_stated(style)) return glm::mat3(1.0f);
     glm::dvec3 sum(0.0);
     for (const Cluster& c : style.clusters) {
         if (!c.shape) continue;

@@ -85,7 +85,9 @@ struct PreparedShells {
 };
 
 // The rotation that turns the style's mean root→tip direction (from its clusters' axes) to −y
-// (models/strands.h hang_axis_rotation): identity for y-up styles.
+// (models/strands.h hang_axis_rotation): identity for y-up styles, and for those whose source says they are in coif's
+// y-up frame already (source "axes": kStyleAxesYUp, written by `coif style import`: it oriented the strands, or their
+// format states its axes, as TressFX's does, whose mohawk sweeps along −z and must not be turned).
 glm::mat3 style_orientation(const HairStyle& style);
 
 // Every cluster's bounding box in the shells' space: its outermost layer mesh's box in the prototype's coordinates,

@@ -97,3 +97,83 @@ DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientatio
 }
 
 }  // namespace coif
+
+namespace coif {
+
+DensityGrid extend_grid(const DensityGrid& grid, glm::vec3 lo, glm::vec3 hi) {
+    const glm::vec3 extent = grid.extent();
+    const float margin = 0.5f * std::max({extent.x, extent.y, extent.z});
+    lo = glm::max(lo, grid.origin - margin);
+    hi = glm::min(hi, grid.origin + extent + margin);
+    // Whole voxels added below and above along each axis.
+    const glm::ivec3 below = glm::max(glm::ivec3(glm::ceil((grid.origin - lo) / grid.voxel)), glm::ivec3(0));
+    const glm::ivec3 above = glm::max(glm::ivec3(glm::ceil((hi - (grid.origin + extent)) / grid.voxel)), glm::ivec3(0));
+    DensityGrid g;
+    g.dims = grid.dims + below + above;
+    g.voxel = grid.voxel;
+    g.origin = grid.origin - glm::vec3(below) * grid.voxel;
+    g.strands_min = grid.strands_min;
+    g.strands_max = grid.strands_max;
+    const std::size_t voxels = static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z;
+    std::vector<glm::vec4>& d = g.diagonal_xy.vector();
+    std::vector<glm::vec2>& o = g.off_diagonal.vector();
+    d.assign(voxels, glm::vec4(0.0f));
+    o.assign(voxels, glm::vec2(0.0f));
+    for (int z = 0; z < grid.dims.z; ++z)
+        for (int y = 0; y < grid.dims.y; ++y)
+            for (int x = 0; x < grid.dims.x; ++x) {
+                const std::size_t to = g.index(x + below.x, y + below.y, z + below.z), from = grid.index(x, y, z);
+                d[to] = grid.diagonal_xy[from];
+                o[to] = grid.off_diagonal[from];
+            }
+    return g;
+}
+
+std::vector<std::uint8_t> voxelize_body(const BodyMesh& body, const glm::mat3& orientation, const DensityGrid& grid) {
+    const glm::ivec3 n = grid.dims;
+    if (glm::any(glm::lessThan(n, glm::ivec3(1)))) throw Error::parameter("body", "the shadow grid is empty");
+    std::vector<std::uint8_t> occ(static_cast<std::size_t>(n.x) * n.y * n.z, 0);
+    const auto mark = [&](glm::vec3 p) {
+        const glm::ivec3 i = glm::ivec3(glm::floor((p - grid.origin) / grid.voxel));
+        if (glm::all(glm::greaterThanEqual(i, glm::ivec3(0))) && glm::all(glm::lessThan(i, n))) occ[grid.index(i.x, i.y, i.z)] = 1;
+    };
+    const float spacing = grid.voxel / 3.0f;
+    const glm::vec3 lo = grid.origin - grid.voxel, hi = grid.origin + grid.extent() + grid.voxel;
+    for (const glm::uvec3& t : body.triangles) {
+        const glm::vec3 a = orientation * body.positions[t.x], b = orientation * body.positions[t.y], c = orientation * body.positions[t.z];
+        if (glm::any(glm::lessThan(glm::max(a, glm::max(b, c)), lo)) || glm::any(glm::greaterThan(glm::min(a, glm::min(b, c)), hi)))
+            continue;  // wholly outside the grid
+        const float edge = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+        const int k = std::max(1, static_cast<int>(std::ceil(edge / spacing)));
+        for (int i = 0; i <= k; ++i)
+            for (int j = 0; i + j <= k; ++j) {
+                const float u = static_cast<float>(i) / k, v = static_cast<float>(j) / k;
+                mark(a + u * (b - a) + v * (c - a));
+            }
+    }
+    // Enclosed voxels: flood the free voxels from the border; those the flood does not reach are inside.
+    std::vector<std::uint8_t> outside(occ.size(), 0);
+    std::vector<glm::ivec3> stack;
+    const auto push = [&](int x, int y, int z) {
+        if (x < 0 || y < 0 || z < 0 || x >= n.x || y >= n.y || z >= n.z) return;
+        const std::size_t i = grid.index(x, y, z);
+        if (occ[i] || outside[i]) return;
+        outside[i] = 1;
+        stack.push_back({x, y, z});
+    };
+    for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+            for (int x = 0; x < n.x; ++x)
+                if (x == 0 || y == 0 || z == 0 || x == n.x - 1 || y == n.y - 1 || z == n.z - 1) push(x, y, z);
+    while (!stack.empty()) {
+        const glm::ivec3 p = stack.back();
+        stack.pop_back();
+        push(p.x - 1, p.y, p.z), push(p.x + 1, p.y, p.z);
+        push(p.x, p.y - 1, p.z), push(p.x, p.y + 1, p.z);
+        push(p.x, p.y, p.z - 1), push(p.x, p.y, p.z + 1);
+    }
+    for (std::size_t i = 0; i < occ.size(); ++i) occ[i] = outside[i] ? occ[i] : 1;
+    return occ;
+}
+
+}  // namespace coif

@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "models/character.h"
 #include "models/core/bulk.h"
 #include "models/strands.h"
 
@@ -50,5 +51,23 @@ float projected_length_density(glm::vec4 diagonal_xy, glm::vec2 off_diagonal, gl
 
 // Throws coif::Error::parameter on an empty strand set or max_dim outside 8..512.
 DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim);
+
+// `grid` grown by whole voxels to hold the box [lo, hi] as well, at most by half its longest extent on each side (so at
+// most twice its longest side along any axis: 128³ voxels for the 64 of coif's grids, 48 MiB): the same voxels hold the
+// same values, the new ones are empty. A body beside the hair (online/shell_renderer.h set_body) gets its own voxels this
+// way; a character far larger than its hair is cut.
+DensityGrid extend_grid(const DensityGrid& grid, glm::vec3 lo, glm::vec3 hi);
+
+// A character's body as an opaque occluder on `grid`'s voxels (x fastest, 0 or 1): the voxels its surface crosses
+// (every triangle sampled at a third of a voxel) and those it encloses (no path of free voxels joins them to the
+// grid's border; an open mesh encloses nothing). The body is turned by `orientation`, as the hair's strands are. Only
+// the part of the body within the grid (extend_grid) is held: the rest casts no shadow on the hair.
+std::vector<std::uint8_t> voxelize_body(const BodyMesh& body, const glm::mat3& orientation, const DensityGrid& grid);
+// A ray that crosses body voxels meets kBodyOpacity times its length through them in voxels as optical depth, at most
+// kBodyMaxDepth (shaders/gl/shell_shadow.comp, which repeats both): a wall one voxel thick, sampled trilinearly, gives
+// at least 20, e^−20 ≈ 2e-9 of the light. The cap keeps a blocked ray from counting as thousands of fibres in the
+// multiple scattering's fibres met n (one blocked ray of 7 adds 20/7).
+inline constexpr float kBodyOpacity = 40.0f;
+inline constexpr float kBodyMaxDepth = 20.0f;
 
 }  // namespace coif

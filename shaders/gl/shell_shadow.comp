@@ -13,6 +13,9 @@
 // the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
 // earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
 layout(local_size_x = 64) in;
+#ifndef SHADOW_BODY
+#define SHADOW_BODY 0
+#endif
 
 #include "shaders/gl/lighting_samples.glsl"
 #include "shaders/lighting/own_cluster.glsl"
@@ -32,10 +35,16 @@ uniform float u_width;        // the fibres' diameter 2r
 uniform int u_sample_count;
 uniform int u_light_count;
 uniform int u_rays;
+#if SHADOW_BODY
+uniform sampler3D u_body;
+uniform float u_body_opacity;    // optical depth per world unit through a body voxel
+uniform float u_body_max_depth;  // per ray
+#endif
 
 const float TWO_PI = 6.28318530718;
 
-float optical_depth(vec3 p, vec3 d) {
+// (the fibres' projected length along the ray, the body's optical depth along it)
+vec2 optical_depth(vec3 p, vec3 d) {
     vec3 inv = 1.0 / vec3(abs(d.x) > 1e-8 ? d.x : 1e-8, abs(d.y) > 1e-8 ? d.y : 1e-8, abs(d.z) > 1e-8 ? d.z : 1e-8);
     vec3 t0 = (u_grid_min - p) * inv;
     vec3 t1 = (u_grid_min + u_grid_extent - p) * inv;
@@ -43,10 +52,11 @@ float optical_depth(vec3 p, vec3 d) {
     vec3 tf = max(t0, t1);
     float a = max(max(max(tn.x, tn.y), tn.z), 0.0);
     float b = min(min(tf.x, tf.y), tf.z);
-    if (b <= a) return 0.0;
+    if (b <= a) return vec2(0.0);
     int n = int(ceil((b - a) / u_step));
     float h = (b - a) / float(n);
     float sum = 0.0;
+    float body = 0.0;
     // dᵀMd = m·(dx², dy², dz², 2 dx dy) + o·(2 dx dz, 2 dy dz) (shadow_grid.cpp projected_length_density).
     vec4 dd = vec4(d * d, 2.0 * d.x * d.y);
     vec2 doff = vec2(2.0 * d.x * d.z, 2.0 * d.y * d.z);
@@ -56,8 +66,11 @@ float optical_depth(vec3 p, vec3 d) {
         float trace = m.x + m.y + m.z;
         float along = dot(m, dd) + dot(textureLod(u_density_off, uvw, 0.0).rg, doff);
         sum += sqrt(max(trace * (trace - along), 0.0));
+#if SHADOW_BODY
+        body += textureLod(u_body, uvw, 0.0).r;
+#endif
     }
-    return sum * h;
+    return vec2(sum, body) * h;
 }
 
 void main() {
@@ -80,7 +93,11 @@ void main() {
             d = normalize(cos(spread) * l + sin(spread) * (cos(phi) * e1 + sin(phi) * e2));
         }
         float start = s.position.w * own_cluster_stretch(d, T) + 2.0 * u_step;
-        float tau = u_width * optical_depth(s.position.xyz + start * d, d);
+        vec2 depth = optical_depth(s.position.xyz + start * d, d);
+        float tau = u_width * depth.x;
+#if SHADOW_BODY
+        tau += min(u_body_opacity * depth.y, u_body_max_depth);
+#endif
         direct += exp(-tau);
         fibres += tau;
     }

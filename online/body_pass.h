@@ -1,0 +1,43 @@
+#pragma once
+// A character's body (models/character.h BodyMesh) drawn opaque for the shell renderer (online/shell_renderer.h
+// set_body): into its own colour and depth textures of the frame's size, then copied into the frame, so that the
+// hair's passes test their fragments against the body's depth (the shaders' scene depth, online/frame.h) and
+// composite over it. Material: shaders/gl/body.frag (Lambertian, kBodyAlbedo, lit by the SRBF lights).
+#include <glm/glm.hpp>
+
+#include "models/character.h"
+#include "online/frame.h"
+#include "online/gl.h"
+
+namespace coif::gl {
+
+// A neutral skin-like grey-brown, linear RGB: the body is there to be seen behind the hair, not to be judged.
+inline constexpr glm::vec3 kBodyAlbedo{0.42f, 0.33f, 0.28f};
+
+class BodyPass {
+public:
+    // Uploads the mesh turned by `orientation` (the hair's: the body is in the same file frame as its strands).
+    // Throws coif::Error::parameter for an empty mesh.
+    BodyPass(const BodyMesh& mesh, const glm::mat3& orientation);
+
+    // Draws the body seen through `view` (its projection shifted by `jitter` pixels as the shells are) over
+    // `background` into width × height textures, lit by the lights in `lights` (std430 GpuLight, `light_count`), then
+    // copies the colour into the framebuffer bound for drawing (at its origin). Returns the GL name of the depth texture
+    // (window-space depth, the standard convention), valid until the next draw.
+    std::uint32_t draw(const FrameView& view, glm::vec2 jitter, int width, int height, GLuint lights, int light_count,
+                       glm::vec3 background);
+
+    std::size_t triangles() const { return index_count_ / 3; }
+
+private:
+    Buffer vertices_, indices_;
+    VertexArray vao_;
+    GLsizei index_count_ = 0;
+    Program program_{{"shaders/gl/body.vert", "shaders/gl/body.frag"}};
+    Program copy_{{"shaders/gl/fullscreen.vert", "shaders/gl/copy_texture.frag"}};
+    Framebuffer fbo_;
+    Texture color_, depth_;
+    int width_ = 0, height_ = 0;
+};
+
+}  // namespace coif::gl
