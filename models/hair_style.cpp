@@ -346,6 +346,32 @@ HairStyle style_from_json(const json& doc, const fs::path& file) {
         }
         cl.density = read_density(rd, rd.field(c, p, "density"), p + "/density", style.layout);
     }
+    if (doc.contains("skinning")) {
+        const json& sk = doc["skinning"];
+        StyleSkinning s;
+        const json& bones = rd.array(rd.field(sk, "/skinning", "bones"), "/skinning/bones", 1, kMaxBones);
+        for (std::size_t b = 0; b < bones.size(); ++b) s.bones.push_back(rd.string(bones[b], "/skinning/bones/" + std::to_string(b)));
+        const json& cs = rd.array(rd.field(sk, "/skinning", "clusters"), "/skinning/clusters", clusters.size(), clusters.size());
+        s.clusters.resize(cs.size());
+        for (std::size_t c = 0; c < cs.size(); ++c) {
+            const std::string p = "/skinning/clusters/" + std::to_string(c);
+            const json& pairs = rd.array(cs[c], p, 1, 4);
+            BoneInfluence& in = s.clusters[c];
+            float sum = 0.0f;
+            for (std::size_t k = 0; k < pairs.size(); ++k) {
+                const std::string q = p + "/" + std::to_string(k);
+                rd.array(pairs[k], q, 2, 2);
+                in.bone[static_cast<int>(k)] = static_cast<int>(rd.integer(pairs[k][0], q + "/0", 0, static_cast<long long>(s.bones.size()) - 1));
+                const double w = rd.number(pairs[k][1], q + "/1");
+                if (w < 0) rd.fail(q + "/1", "a bone weight must not be negative");
+                in.weight[static_cast<int>(k)] = static_cast<float>(w);
+                sum += static_cast<float>(w);
+            }
+            if (!(sum >= kMinWeightSum)) rd.fail(p, "the weights sum to " + std::to_string(sum) + ", below " + std::to_string(kMinWeightSum));
+            in.weight /= sum;
+        }
+        style.skinning = std::move(s);
+    }
     style.resolve(file);
     return style;
 }
@@ -357,6 +383,21 @@ HairStyle parse_style(std::string_view text, const fs::path& file) {
 bool style_axes_stated(const HairStyle& style) {
     return style.source.is_object() && style.source.contains("axes") && style.source["axes"].is_string() &&
            style.source["axes"].get<std::string>() == kStyleAxesYUp;
+}
+
+glm::mat3 style_source_rotation(const HairStyle& style) {
+    glm::mat3 r(1.0f);
+    if (!style.source.is_object() || !style.source.contains("rotation_applied")) return r;
+    const nlohmann::json& rows = style.source["rotation_applied"];
+    if (!rows.is_array() || rows.size() != 3) return r;
+    for (int i = 0; i < 3; ++i) {
+        if (!rows[i].is_array() || rows[i].size() != 3) return glm::mat3(1.0f);
+        for (int j = 0; j < 3; ++j) {
+            if (!rows[i][j].is_number()) return glm::mat3(1.0f);
+            r[j][i] = rows[i][j].get<float>();  // row i, column j
+        }
+    }
+    return r;
 }
 
 HairStyle read_style(const fs::path& path) {
@@ -438,6 +479,16 @@ nlohmann::ordered_json style_to_json(const HairStyle& style) {
         clusters.push_back(std::move(j));
     }
     doc["clusters"] = std::move(clusters);
+    if (style.skinning) {
+        json cs = json::array();
+        for (const BoneInfluence& in : style.skinning->clusters) {
+            json pairs = json::array();
+            for (int k = 0; k < 4; ++k)
+                if (in.weight[k] > 0.0f) pairs.push_back({in.bone[k], round_json(in.weight[k], kDigits)});
+            cs.push_back(std::move(pairs));
+        }
+        doc["skinning"] = {{"bones", style.skinning->bones}, {"clusters", std::move(cs)}};
+    }
     return doc;
 }
 
@@ -446,6 +497,11 @@ std::string style_text(const HairStyle& style) {
     nlohmann::ordered_json doc = style_to_json(style);
     nlohmann::ordered_json clusters = std::move(doc["clusters"]);
     doc.erase("clusters");
+    nlohmann::ordered_json skinning;
+    if (doc.contains("skinning")) {
+        skinning = std::move(doc["skinning"]);
+        doc.erase("skinning");
+    }
     std::string head = doc.dump(2);
     head.pop_back();  // the closing brace
     while (!head.empty() && (head.back() == '\n' || head.back() == ' ')) head.pop_back();
@@ -454,7 +510,10 @@ std::string style_text(const HairStyle& style) {
         out += "    " + clusters[i].dump();
         out += i + 1 < clusters.size() ? ",\n" : "\n";
     }
-    out += "  ]\n}\n";
+    out += "  ]";
+    if (!skinning.is_null())  // the bones on one line, the clusters' weights on another
+        out += ",\n  \"skinning\": {\n    \"bones\": " + skinning["bones"].dump() + ",\n    \"clusters\": " + skinning["clusters"].dump() + "\n  }";
+    out += "\n}\n";
     return out;
 }
 

@@ -60,6 +60,7 @@
 
 #include "models/generalized_cylinder.h"
 #include "models/generalized_disk.h"
+#include "models/skinning.h"
 #include "models/sector_density.h"
 #include "models/similarity.h"
 
@@ -115,6 +116,9 @@ struct HairStyle {
     nlohmann::json source = nlohmann::json::object();
     DiskLayout layout;
     std::vector<Cluster> clusters;
+    // The clusters' bone weights (models/skinning.h), when the style was fitted to skinned strands (`coif style import
+    // --skinning`). JSON: "skinning": {"bones": [name, …], "clusters": [[[bone, weight], … up to 4], … one per cluster]}.
+    std::optional<StyleSkinning> skinning;
 
     // Follows instance references, fills prototype/placement/shape/density of every cluster. Throws
     // coif::Error (place "JSON /clusters/i/instance_of") on a cycle or a dangling reference.
@@ -125,6 +129,9 @@ struct HairStyle {
 
 // Whether the style's source says it is in coif's y-up frame already (kStyleAxesYUp).
 bool style_axes_stated(const HairStyle& style);
+// The rotation `coif style import` applied to the strand file's coordinates (source "rotation_applied", row-major), or
+// the identity: what takes things in the strand file's frame (a character's body) into the style's.
+glm::mat3 style_source_rotation(const HairStyle& style);
 
 HairStyle read_style(const std::filesystem::path& path);
 HairStyle parse_style(std::string_view text, const std::filesystem::path& name);

@@ -12,13 +12,25 @@ namespace {
 struct BodyVertex {
     glm::vec3 position, normal;
 };
+std::vector<BodyVertex> body_vertices(const BodyMesh& mesh, const glm::mat3& orientation) {
+    std::vector<BodyVertex> v(mesh.positions.size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = {orientation * mesh.positions[i], glm::normalize(orientation * mesh.normals[i])};
+    return v;
+}
 }  // namespace
+
+void BodyPass::update(const BodyMesh& mesh, const glm::mat3& orientation) {
+    if (mesh.positions.size() != vertex_count_ || mesh.triangles.size() * 3 != static_cast<std::size_t>(index_count_))
+        throw Error::parameter("body", "a new pose must keep the mesh's vertex and triangle counts");
+    const std::vector<BodyVertex> v = body_vertices(mesh, orientation);
+    glNamedBufferSubData(vertices_.id(), 0, static_cast<GLsizeiptr>(v.size() * sizeof(BodyVertex)), v.data());
+}
 
 BodyPass::BodyPass(const BodyMesh& mesh, const glm::mat3& orientation) {
     if (mesh.positions.empty() || mesh.triangles.empty()) throw Error::parameter("body", "the mesh has no triangles");
-    std::vector<BodyVertex> v(mesh.positions.size());
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = {orientation * mesh.positions[i], glm::normalize(orientation * mesh.normals[i])};
-    vertices_ = make_buffer(v.data(), v.size() * sizeof(BodyVertex));
+    const std::vector<BodyVertex> v = body_vertices(mesh, orientation);
+    vertex_count_ = v.size();
+    vertices_ = make_buffer(v.data(), v.size() * sizeof(BodyVertex), GL_DYNAMIC_STORAGE_BIT);  // update(): new poses
     indices_ = make_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
     index_count_ = static_cast<GLsizei>(mesh.triangles.size() * 3);
     vao_ = make_vertex_array();

@@ -19,6 +19,8 @@ public:
     // Uploads the mesh turned by `orientation` (the hair's: the body is in the same file frame as its strands).
     // Throws coif::Error::parameter for an empty mesh.
     BodyPass(const BodyMesh& mesh, const glm::mat3& orientation);
+    // The same mesh moved (a new pose): its vertices re-uploaded. Throws coif::Error::parameter if the counts differ.
+    void update(const BodyMesh& mesh, const glm::mat3& orientation);
 
     // Draws the body seen through `view` (its projection shifted by `jitter` pixels as the shells are) over
     // `background` into width × height textures, lit by the lights in `lights` (std430 GpuLight, `light_count`), then
@@ -27,12 +29,14 @@ public:
     std::uint32_t draw(const FrameView& view, glm::vec2 jitter, int width, int height, GLuint lights, int light_count,
                        glm::vec3 background);
 
-    std::size_t triangles() const { return index_count_ / 3; }
+    std::size_t triangles() const { return static_cast<std::size_t>(index_count_) / 3; }
+    std::size_t vertices() const { return vertex_count_; }
 
 private:
     Buffer vertices_, indices_;
     VertexArray vao_;
     GLsizei index_count_ = 0;
+    std::size_t vertex_count_ = 0;
     Program program_{{"shaders/gl/body.vert", "shaders/gl/body.frag"}};
     Program copy_{{"shaders/gl/fullscreen.vert", "shaders/gl/copy_texture.frag"}};
     Framebuffer fbo_;

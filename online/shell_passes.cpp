@@ -45,9 +45,10 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
     vertices = make_buffer(shells.vertices.data(), shells.vertices.size() * sizeof(ShellVertex));
     indices = make_buffer(shells.indices.data(), shells.indices.size() * sizeof(std::uint32_t));
     cluster_ids = make_buffer(shells.cluster_ids.data(), shells.cluster_ids.size() * sizeof(std::uint32_t));
-    instances = make_buffer(shells.instances.data(), shells.instances.size() * sizeof(ShellInstance));
+    // The placements change when the hair moves (set_placement).
+    instances = make_buffer(shells.instances.data(), shells.instances.size() * sizeof(ShellInstance), GL_DYNAMIC_STORAGE_BIT);
     sectors = make_buffer(shells.sectors.data(), shells.sectors.size() * sizeof(ShellSector));
-    samples = make_buffer(shells.samples.data(), shells.samples.size() * sizeof(LightingSample));
+    samples = make_buffer(shells.samples.data(), shells.samples.size() * sizeof(LightingSample), GL_DYNAMIC_STORAGE_BIT);
     vao = make_vertex_array();
     const GLuint v = vao.id();
     glVertexArrayVertexBuffer(v, 0, vertices.id(), 0, sizeof(ShellVertex));
@@ -80,6 +81,12 @@ void ShellGpu::set_lights(std::span<const SrbfLight> l) {
     lights = make_lights_buffer(l);
     light_count = static_cast<int>(l.size());
     shadows = make_buffer(nullptr, l.size() * sample_count * sizeof(glm::vec2));
+}
+
+void ShellGpu::set_placement(std::span<const ShellInstance> in, std::span<const LightingSample> s) {
+    glNamedBufferSubData(instances.id(), 0, static_cast<GLsizeiptr>(in.size_bytes()), in.data());
+    glNamedBufferSubData(samples.id(), 0, static_cast<GLsizeiptr>(s.size_bytes()), s.data());
+    geometry_stamp = next_stamp();
 }
 
 void ShellGpu::set_grid(const DensityGrid& grid) {
@@ -206,7 +213,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
                       key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.eye == eye &&
                       key.lights_stamp == gpu.lights_stamp &&
-                      key.absorption_stamp == gpu.absorption_stamp;
+                      key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp;
     if (same && s.reuse_lighting) return false;
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     const std::vector<std::string> defines = variant_defines(s);
@@ -227,7 +234,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, eye, gpu.lights_stamp, gpu.absorption_stamp};
+    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, eye, gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp};
     return true;
 }
 

@@ -67,7 +67,10 @@ struct ShellGpu {
     // Changed by set_lights and set_absorption, each to a number never used before: what the lighting pass's sums
     // were made from (LightingKey).
     std::uint64_t lights_stamp = 0, absorption_stamp = 0;
+    std::uint64_t geometry_stamp = 0;  // changed by set_placement: the clusters moved
 
+    // New placements of the clusters: their instances and lighting samples (the counts of the constructor's).
+    void set_placement(std::span<const ShellInstance> instances, std::span<const LightingSample> samples);
     void set_lights(std::span<const SrbfLight> lights);
     void set_absorption(const AbsorptionMap* map);
     // Uploads the shadow grid (the constructor's, or one extended to hold a body).
@@ -99,7 +102,7 @@ struct LightingKey {
     float tangent_spread = 0.0f;
     int step = 1;
     glm::vec3 eye{0.0f};
-    std::uint64_t lights_stamp = 0, absorption_stamp = 0;
+    std::uint64_t lights_stamp = 0, absorption_stamp = 0, geometry_stamp = 0;
 };
 
 // The lighting samples lit per cluster when every `step`-th of its `rows` is (ShellSettings::lighting_step): the first,

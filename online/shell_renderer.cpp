@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <optional>
 
 #include "models/core/error.h"
 #include "models/core/log.h"
@@ -59,7 +60,32 @@ struct ShellRenderer::Impl {
     bool in_render = false;  // render() draws again or in tiles what overflows: no warning then
     std::map<int, int> lighting_steps;      // ShellSettings::lighting_step → the step this style allows (lighting_step_within)
     std::unique_ptr<BodyPass> body;         // set_body's, drawn by draw_view
+    std::optional<BodyMesh> body_mesh;      // and its mesh, voxelized again into each new shadow grid
+    glm::mat3 body_orientation{1.0f};
     DensityGrid grid;                       // the hair's own shadow grid (set_body extends a copy of it)
+    std::vector<ShellInstance> cooked_instances;  // the placements as cooked (set_cluster_transforms moves copies)
+    std::vector<LightingSample> cooked_samples;
+
+    void invalidate_shadows() {
+        shadows_valid = false;
+        lighting_key.valid = false;
+        for (InstanceLights& il : instances) il.shadows_valid = false, il.lighting_key.valid = false;
+    }
+    // The hair's grid, grown to hold the body beside it (extend_grid), and the body's voxels on it; uploaded.
+    void upload_grid() {
+        DensityGrid grown;
+        if (body_mesh) {
+            glm::vec3 lo(INFINITY), hi(-INFINITY);
+            for (const glm::vec3& p : body_mesh->positions) lo = glm::min(lo, body_orientation * p), hi = glm::max(hi, body_orientation * p);
+            grown = extend_grid(grid, lo, hi);
+        }
+        const DensityGrid& g = body_mesh ? grown : grid;
+        gpu->set_grid(g);
+        gpu->set_body(body_mesh ? voxelize_body(*body_mesh, body_orientation, g) : std::vector<std::uint8_t>{}, g.dims);
+        grid_dims = g.dims;
+        invalidate_shadows();
+    }
+    glm::ivec3 grid_dims{0};
 
     int lighting_step(int wanted) {
         auto it = lighting_steps.find(wanted);
@@ -104,6 +130,8 @@ ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>
     glFinish();  // the upload's copies done, so that upload_seconds holds them
     stats_.upload_seconds = std::chrono::duration<double>(Clock::now() - upload).count();
     m.shells = std::move(cooked.shells);
+    m.cooked_instances = m.shells.instances;
+    m.cooked_samples = m.shells.samples;
 
     const PreparedShells& p = m.shells;
     stats_.clusters = p.clusters();
@@ -138,23 +166,65 @@ void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
 
 void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_absorption(map); }
 
-void ShellRenderer::set_body(const BodyMesh* body, const glm::mat3& orientation) {
+void ShellRenderer::set_body(const BodyMesh* body, const glm::mat3& orientation, bool regrid) {
     Impl& m = *impl_;
-    m.body = body ? std::make_unique<BodyPass>(*body, orientation) : nullptr;
-    // The hair's grid, grown to hold the body beside it (extend_grid), and the body's voxels on it.
-    DensityGrid grown;
-    if (body) {
-        glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const glm::vec3& p : body->positions) lo = glm::min(lo, orientation * p), hi = glm::max(hi, orientation * p);
-        grown = extend_grid(m.grid, lo, hi);
+    if (!body) m.body.reset();
+    else if (m.body && m.body->vertices() == body->positions.size() && m.body->triangles() == body->triangles.size())
+        m.body->update(*body, orientation);  // a new pose of the same mesh: no new programs
+    else m.body = std::make_unique<BodyPass>(*body, orientation);
+    if (body) m.body_mesh = *body;
+    else m.body_mesh.reset();
+    m.body_orientation = orientation;
+    if (!regrid) return;
+    m.upload_grid();
+    stats_.grid_x = m.grid_dims.x, stats_.grid_y = m.grid_dims.y, stats_.grid_z = m.grid_dims.z;
+}
+
+void ShellRenderer::set_shadow_grid(DensityGrid grid) {
+    Impl& m = *impl_;
+    if (glm::any(glm::lessThan(grid.dims, glm::ivec3(1))) || !(grid.voxel > 0.0f))
+        throw Error::parameter("shadow grid", "it is empty");
+    m.grid = std::move(grid);
+    m.upload_grid();
+    stats_.grid_x = m.grid_dims.x, stats_.grid_y = m.grid_dims.y, stats_.grid_z = m.grid_dims.z;
+    stats_.voxel = m.grid.voxel;
+}
+
+void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms) {
+    Impl& m = *impl_;
+    PreparedShells& p = m.shells;
+    if (transforms.size() != p.clusters())
+        throw Error::parameter("cluster transforms", std::to_string(transforms.size()) + " transforms for " +
+                                                         std::to_string(p.clusters()) + " clusters");
+    for (std::size_t c = 0; c < transforms.size(); ++c) {
+        const glm::mat3 R(transforms[c]);
+        const glm::mat3 E = glm::transpose(R) * R - glm::mat3(1.0f);
+        float off = 0.0f;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) off = std::max(off, std::abs(E[i][j]));
+        if (!(off <= 1e-3f) || !(glm::determinant(R) > 0.0f) || transforms[c][0][3] != 0.0f || transforms[c][1][3] != 0.0f ||
+            transforms[c][2][3] != 0.0f || transforms[c][3][3] != 1.0f)
+            throw Error::parameter("cluster transform " + std::to_string(c), "must be a rotation and a translation");
     }
-    const DensityGrid& grid = body ? grown : m.grid;
-    m.gpu->set_grid(grid);
-    m.gpu->set_body(body ? voxelize_body(*body, orientation, grid) : std::vector<std::uint8_t>{}, grid.dims);
-    stats_.grid_x = grid.dims.x, stats_.grid_y = grid.dims.y, stats_.grid_z = grid.dims.z;
-    m.shadows_valid = false;
-    m.lighting_key.valid = false;
-    for (InstanceLights& il : m.instances) il.shadows_valid = false, il.lighting_key.valid = false;
+    for (std::size_t i = 0; i < p.instances.size(); ++i) {
+        const ShellInstance& rest = m.cooked_instances[i];
+        p.instances[i].model = transforms[rest.info.y] * rest.model;
+    }
+    const std::size_t rows = static_cast<std::size_t>(p.lighting_rows);
+    for (std::size_t i = 0; i < p.samples.size(); ++i) {
+        const glm::mat4& T = transforms[i / rows];
+        const glm::mat3 R(T);
+        const LightingSample& rest = m.cooked_samples[i];
+        LightingSample& s = p.samples[i];
+        s.position = glm::vec4(glm::vec3(T * glm::vec4(glm::vec3(rest.position), 1.0f)), rest.position.w);
+        s.tangent = glm::vec4(R * glm::vec3(rest.tangent), rest.tangent.w);
+        s.normal = glm::vec4(R * glm::vec3(rest.normal), rest.normal.w);
+        s.tilt_mean = glm::vec4(R * glm::vec3(rest.tilt_mean), rest.tilt_mean.w);
+        s.tilt_a = glm::vec4(R * glm::vec3(rest.tilt_a), rest.tilt_a.w);
+        s.tilt_b = glm::vec4(R * glm::vec3(rest.tilt_b), rest.tilt_b.w);
+    }
+    m.gpu->set_placement(p.instances, p.samples);
+    m.invalidate_shadows();
 }
 
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {

@@ -108,7 +108,18 @@ public:
     // frame), or null: none. It shadows the hair in every draw (voxelized into the shadow grid: voxelize_body, within the
     // hair's box), and draw() and render() draw it opaque behind and between the hair's fragments (online/body_pass.h);
     // draw_frame does not draw it (the host draws its own scene and passes its depth). Keeps no reference to `body`.
-    void set_body(const BodyMesh* body, const glm::mat3& orientation = glm::mat3(1.0f));
+    // regrid false: the body is not voxelized now, because the caller gives a new shadow grid next (set_shadow_grid,
+    // which voxelizes it; online/scene/hair_motion.h, once per frame).
+    void set_body(const BodyMesh* body, const glm::mat3& orientation = glm::mat3(1.0f), bool regrid = true);
+    // Moves every cluster rigidly (motion: online/scene/hair_motion.h): transforms[c] takes cluster c from where it was
+    // cooked to where it is now, in the shells' space (a rotation and a translation). The instances and lighting samples
+    // are placed anew from their cooked copies, and the shadows and the lighting pass follow on the next draw. The SATF
+    // look-ups stay: a cluster that moves rigidly keeps its density. The shadow grid does not move: give the moved
+    // hair's with set_shadow_grid. Throws coif::Error::parameter for a count other than the clusters' or a transform that
+    // is not rigid.
+    void set_cluster_transforms(std::span<const glm::mat4> transforms);
+    // Replaces the hair's shadow grid (e.g. voxelized from the moved strands); a body (set_body) is voxelized into it anew.
+    void set_shadow_grid(DensityGrid grid);
     // Draws into the bound framebuffer (cleared to the background first). `floor` draws the same
     // shells in the same order with a trivial shader (the floor of `coif bench render`).
     void draw(const Camera& camera, const ShellSettings& settings, bool floor = false);

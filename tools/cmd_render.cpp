@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "models/absorption_map.h"
+#include "models/animation.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "offline/srbf_lights.h"
@@ -17,6 +18,7 @@
 #include "online/shell_renderer.h"
 #include "online/strand_renderer.h"
 #include "db/coverage.h"
+#include "tools/animation_run.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"
 
@@ -33,6 +35,7 @@ struct RenderOptions {
     bool per_fragment = false;
     bool alpha = false;
     bool json = false;
+    std::string animate;
 };
 
 // Held-out sectors of the database's generator that set the "beyond the held-out p95" distance of the
@@ -76,6 +79,12 @@ void add_render(CLI::App& root) {
     render->add_flag("--alpha", o->alpha,
                      "Strand lines: write straight-alpha RGBA (A = fibre coverage, RGB = the hair's radiance, no background), "
                      "as coif reference --alpha");
+    render->add_option("--animate", o->animate,
+                       "Animation spec (JSON: frames, fps, bones, pivot, keys of rotate_deg and translate; models/animation.h):\n"
+                       "the style's clusters follow the --body's bones by their weights (coif style import --skinning) frame by\n"
+                       "frame, the body skinned, the shadow grid made again; writes OUT_0000.png … and the contact sheet\n"
+                       "OUT_sheet.png beside -o OUT.png")
+        ->check(CLI::ExistingFile);
     render->add_flag("--preview-strands", o->preview,
                      "Draw the style's strands as lit GL lines (the strand renderer of --strands), not the SATF shells");
     coif::cli::examples(render, "  coif render -o hair.png\n"
@@ -83,7 +92,8 @@ void add_render(CLI::App& root) {
                                 "  coif render --params red.json --width 1920 --height 1080 -o hd.png\n"
                                 "  coif render --absorption dyed.exr -o dyed.png   # from coif style paint-absorption\n"
                                 "  coif render --aovs -o hair.exr   # also hair.R.exr, hair.TT.exr, hair.TRT.exr, hair.multiple.exr, hair.shadow.exr\n"
-                                "  coif render --strands ../shared/data/harolongo.data --env lights.json -o lines.png");
+                                "  coif render --strands ../shared/data/harolongo.data --env lights.json -o lines.png\n"
+                                "  coif render --style mohawk.json --body ../shared/data/Ratboy_body.tfxmesh --animate head_turn.json -o turn.png");
     render->footer(render->get_footer() +
                    "\n\nParameters file (--params; also read by coif reference --params, which uses the fibre's keys):\n"
                    "a JSON object, every key optional; degrees for angles. alpha_R_deg / beta_R_deg alone keep 000's\n"
@@ -94,6 +104,42 @@ void add_render(CLI::App& root) {
         coif::cli::lock_output(o->output);
         coif::WriteOptions wo;
         wo.exposure = o->exposure;
+        if (!o->animate.empty()) {
+            if (o->preview || !o->scene.strands.empty() || o->aovs)
+                throw coif::Error::parameter("option --animate", "animates the shells; --strands, --preview-strands and --aovs do not apply");
+            std::vector<coif::Image> thumbs;
+            int shrink_by = 1;
+            const int frames = coif::read_animation_spec(o->animate).frames;
+            wo.description = "coif render --animate " + o->animate + "; style " + o->scene.style;
+            const coif::cli::AnimationResult r = coif::cli::run_animation(o->scene, o->shell, o->animate, [&](int f, const coif::Image& image) {
+                if (f == 0) shrink_by = coif::cli::sheet_factor(frames, image.width);
+                const std::string path = coif::cli::animation_frame_path(o->output, f);
+                coif::write_image(path, image, wo);
+                thumbs.push_back(coif::cli::shrink(image, shrink_by));
+            });
+            const std::string sheet = coif::cli::animation_sheet_path(o->output);
+            coif::write_image(sheet, coif::cli::contact_sheet(thumbs), wo);
+            double total = 0, motion = 0;
+            for (const auto& f : r.frames) total += f.total_ms, motion += f.skinning_ms + f.deformation_ms + f.shadow_grid_ms;
+            const double n = static_cast<double>(r.frames.size());
+            std::fprintf(stderr,
+                         "animated %zu frames at %dx%d on %s: %.1f ms a frame (motion %.1f: skinning, deformation, shadow grid; "
+                         "the rest the shadow, lighting and shell passes); a still frame %.1f ms; roots within %.2f of the posed "
+                         "body's vertices -> %s … %s, %s\n",
+                         r.frames.size(), r.width, r.height, r.renderer.c_str(), total / n, motion / n, r.still.total_ms,
+                         r.max_root_lift, coif::cli::animation_frame_path(o->output, 0).c_str(),
+                         coif::cli::animation_frame_path(o->output, static_cast<int>(r.frames.size()) - 1).c_str(), sheet.c_str());
+            if (o->json)
+                coif::cli::print_json({{"frames", r.frames.size()},
+                                       {"width", r.width},
+                                       {"height", r.height},
+                                       {"frame_milliseconds", total / n},
+                                       {"motion_milliseconds", motion / n},
+                                       {"still_milliseconds", r.still.total_ms},
+                                       {"max_root_distance", r.max_root_lift},
+                                       {"sheet", sheet}});
+            return;
+        }
         if (o->preview || !o->scene.strands.empty()) {
             // Everything that can be refused is read before anything is rendered or written.
             coif::gl::StrandSettings settings;

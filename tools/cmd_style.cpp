@@ -112,7 +112,7 @@ void add_style(CLI::App& root) {
 
     // ── import ──
     struct ImportOptions {
-        std::string in, out, name;
+        std::string in, out, name, skinning;
         coif::FitOptions fit;
         std::vector<int> grid{8, 4};
         std::optional<double> gaussian_width;  // absent: automatic (models/style_fit.h)
@@ -154,6 +154,11 @@ void add_style(CLI::App& root) {
     imp->add_option("--seed", io->fit.seed, "Seed of the k-means++ initialisation")->capture_default_str();
     imp->add_option("--name", io->name, "Name written into the style (default: the model's file name)");
     imp->add_flag("--no-orient", io->no_orient, "Keep the file's axes even if the hair does not hang along -y");
+    imp->add_option("--skinning", io->skinning,
+                    "The strands' bone weights (AMD TressFX .tfxbone, one record per strand of the model): each cluster gets the\n"
+                    "mean of its strands' weights (the four largest, renormalised), written into the style for `coif render\n"
+                    "--animate` (models/skinning.h)")
+        ->check(CLI::ExistingFile);
     imp->add_flag("--check", io->check,
                   "Also path-trace the fitted style's strands and the file's own (coif reference, 180x120, 16 spp, single\n"
                   "scattering under a constant sky, the same camera and fibre radius) and print the hair-mask IoU and the\n"
@@ -161,7 +166,8 @@ void add_style(CLI::App& root) {
     coif::cli::add_json_flag(imp, io->json);
     coif::cli::examples(imp, "  coif style import ../shared/data/harolongo.data --clusters 64 -o harolongo64.json\n"
                              "  coif style import ../shared/data/Bangs_100.hair --clusters 32 -o bangs.json --json\n"
-                             "  coif style import ../shared/data/Curly_100.hair --clusters 8 --gaussian-width 2 -o curly8.json");
+                             "  coif style import ../shared/data/Curly_100.hair --clusters 8 --gaussian-width 2 -o curly8.json\n"
+                             "  coif style import ../shared/data/Ratboy_mohawk.tfx --skinning ../shared/data/Ratboy_mohawk.tfxbone -o mohawk.json");
     imp->callback([io] {
         const auto t0 = std::chrono::steady_clock::now();
         coif::cli::lock_output(io->out);
@@ -172,12 +178,21 @@ void add_style(CLI::App& root) {
         fit.orient_y_up = !io->no_orient;
         fit.progress = !io->json;
         const coif::Strands strands = coif::read_strands(io->in);
+        std::optional<coif::StrandSkinning> skinning;
+        if (!io->skinning.empty()) {
+            skinning = coif::read_tfxbone(io->skinning);
+            if (skinning->strands.size() != strands.strand_count())
+                throw coif::Error(io->skinning, "strand count",
+                                  std::to_string(skinning->strands.size()) + " skinned strands, but " + io->in + " has " +
+                                      std::to_string(strands.strand_count()));
+        }
         if (io->gaussian_width) coif::check_gaussian_width(*io->gaussian_width, strands, "--gaussian-width");
         const double seconds_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         coif::FitReport report;
         coif::HairStyle style = coif::fit_style(strands, fit, &report);
         style.name = io->name.empty() ? fs::path(io->in).filename().string() + " (" + std::to_string(style.clusters.size()) + " clusters)" : io->name;
         style.units = "as in the source file";
+        if (skinning) style.skinning = coif::cluster_influences(*skinning, report.strand_cluster, style.clusters.size());
         const coif::FitError& e = report.error;
         const coif::StrayReport& sr = report.stray;
         const glm::dmat3& r = report.rotation;
@@ -188,6 +203,7 @@ void add_style(CLI::App& root) {
                         {"points", strands.points.size()},
                         {"rotation_applied", {{r[0][0], r[1][0], r[2][0]}, {r[0][1], r[1][1], r[2][1]}, {r[0][2], r[1][2], r[2][2]}}},
                         {"axes", fit.orient_y_up || strands.axes_stated ? coif::kStyleAxesYUp : "as in the source file"},
+                        {"skinning", io->skinning.empty() ? nlohmann::json(nullptr) : nlohmann::json(fs::path(io->skinning).filename().string())},
                         {"fit", {{"clusters_requested", fit.clusters}, {"coverage", fit.coverage}, {"macro_tolerance", fit.macro_tolerance},
                                  {"store_every", fit.store_every}, {"seed", fit.seed}}},
                         {"fitting_error", error_json(e)},

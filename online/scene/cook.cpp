@@ -12,7 +12,6 @@
 namespace coif {
 namespace {
 
-constexpr int kShadowGridSize = 64;  // voxels along the hair's longest axis (docs/renderer.md: error and cost)
 
 // A record's 12 atlas channels at every (view, x), view-major: α and re's first 9 coefficients (a database of a
 // lower order leaves the rest zero; one of a higher order is read to order 4).

@@ -74,7 +74,7 @@ HairScene::HairScene(HairSceneDesc desc)
     }
     renderer = std::move(v.renderer);
     if (desc.body) {
-        const glm::mat3 orientation = desc.cooked ? glm::mat3(1.0f) : style_orientation(style);
+        const glm::mat3 orientation = desc.cooked ? glm::mat3(1.0f) : style_orientation(style) * style_source_rotation(style);
         renderer->set_body(&*desc.body, orientation);
         if (!desc.framing.box) {  // frame the character: the hair's box and the body's
             for (const glm::vec3& p : desc.body->positions) {

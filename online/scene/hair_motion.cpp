@@ -1,0 +1,66 @@
+#include "online/scene/hair_motion.h"
+
+#include <chrono>
+
+#include "models/core/error.h"
+#include "models/style_strands.h"
+#include "online/scene/cook.h"
+#include "online/shells/shadow_grid.h"
+
+namespace coif::gl {
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+}  // namespace
+
+HairMotion::HairMotion(const HairStyle& style, const BodyMesh& body, const glm::mat3& hair_orientation,
+                       const glm::mat3& body_orientation) {
+    if (!style.skinning) throw Error::parameter("style", "it has no bone weights (coif style import --skinning FILE.tfxbone)");
+    if (body.bones.empty() || body.influences.size() != body.positions.size())
+        throw Error::parameter("body", "it has no bone weights to pose it with (a .tfxmesh has them, an .obj has none)");
+    body_ = body;
+    for (std::size_t i = 0; i < body_.positions.size(); ++i) {
+        body_.positions[i] = body_orientation * body.positions[i];
+        body_.normals[i] = glm::normalize(body_orientation * body.normals[i]);
+    }
+    posed_ = body_;
+    rest_ = rest_pose(body_);
+    bone_of_ = bone_map(style.skinning->bones, body_.bones);
+    bool any = false;
+    for (int b : bone_of_) any = any || b >= 0;
+    if (!any) throw Error::parameter("skinning", "none of the style's bones is in the body's skeleton (matched by name)");
+    influences_ = style.skinning->clusters;
+    strands_ = sample_strands(style, StrandSampling{}, &strand_cluster_);  // the strands cook_shells voxelizes
+    for (glm::vec3& p : strands_.points) p = hair_orientation * p;
+    for (const Cluster& c : style.clusters) rest_roots_.push_back(hair_orientation * glm::vec3(c.placement.apply(c.shape->position(0.0))));
+    roots_ = rest_roots_;
+    transforms_.assign(style.clusters.size(), glm::mat4(1.0f));
+    moved_ = strands_;
+}
+
+void HairMotion::pose(ShellRenderer& renderer, const BonePose& pose) {
+    auto t0 = Clock::now();
+    if (pose.transforms.size() != body_.bones.size() || pose.pivots.size() != body_.bones.size())
+        throw Error::parameter("pose", "it has " + std::to_string(pose.transforms.size()) + " bones, the body " +
+                                           std::to_string(body_.bones.size()));
+    skin_body(body_, pose, posed_.positions, posed_.normals);
+    for (std::size_t c = 0; c < influences_.size(); ++c) {
+        transforms_[c] = cluster_transform(influences_[c], bone_of_, pose, rest_roots_[c]);
+        roots_[c] = glm::vec3(transforms_[c] * glm::vec4(rest_roots_[c], 1.0f));
+    }
+    timings_.skinning_ms = ms_since(t0);
+    t0 = Clock::now();
+    renderer.set_cluster_transforms(transforms_);
+    timings_.deformation_ms = ms_since(t0);
+    t0 = Clock::now();
+    for (std::size_t s = 0; s < strand_cluster_.size(); ++s) {
+        const glm::mat4& T = transforms_[strand_cluster_[s]];
+        for (std::uint32_t k = strands_.offsets[s]; k < strands_.offsets[s + 1]; ++k)
+            moved_.points[k] = glm::vec3(T * glm::vec4(strands_.points[k], 1.0f));
+    }
+    renderer.set_body(&posed_, glm::mat3(1.0f), false);  // voxelized into the new grid by set_shadow_grid
+    renderer.set_shadow_grid(voxelize_strands(moved_, glm::mat3(1.0f), kShadowGridSize));
+    timings_.shadow_grid_ms = ms_since(t0);
+}
+
+}  // namespace coif::gl
