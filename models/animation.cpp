@@ -51,7 +51,7 @@ AnimationSpec parse_animation_spec(std::string_view text, const fs::path& file) 
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // a syntax error, or a number beyond double's range
         throw Error(file, "JSON", std::string("not valid JSON: ") + e.what());
     }
     if (!doc.is_object()) rd.fail("/", "an animation is a JSON object");
