@@ -15,6 +15,20 @@ namespace fs = std::filesystem;
 namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// The extremes (min, max) of the roots' signed distances from their nearest body vertex along its normal.
+glm::dvec2 root_offsets(const std::vector<glm::vec3>& roots, const BodyMesh& body) {
+    glm::dvec2 range(INFINITY, -INFINITY);
+    for (const glm::vec3& r : roots) {
+        std::size_t best = 0;
+        float nearest = INFINITY;
+        for (std::size_t i = 0; i < body.positions.size(); ++i)
+            if (const float d = glm::distance(r, body.positions[i]); d < nearest) nearest = d, best = i;
+        const double s = glm::dot(r - body.positions[best], body.normals[best]);
+        range = {std::min(range.x, s), std::max(range.y, s)};
+    }
+    return range;
+}
 }  // namespace
 
 AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& shell, const std::string& spec_path,
@@ -55,6 +69,8 @@ AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& she
         out.still.lighting_ms = renderer.timings().lighting_wall_ms;
         out.still.shells_ms = renderer.timings().shells_wall_ms;
     }
+    out.rest_root_offset = root_offsets(motion.roots(), motion.posed_body());
+    out.animated_root_offset = glm::dvec2(INFINITY, -INFINITY);
     for (int f = 0; f < spec.frames; ++f) {
         const auto t0 = Clock::now();
         motion.pose(renderer, animation_pose(spec, motion.bones(), motion.rest(), f));
@@ -68,12 +84,8 @@ AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& she
         a.lighting_ms = renderer.timings().lighting_wall_ms;
         a.shells_ms = renderer.timings().shells_wall_ms;
         out.frames.push_back(a);
-        // Roots against the posed body: the distance to the nearest body vertex, the largest over the clusters.
-        for (const glm::vec3& r : motion.roots()) {
-            float nearest = INFINITY;
-            for (const glm::vec3& p : motion.posed_body().positions) nearest = std::min(nearest, glm::distance(r, p));
-            out.max_root_lift = std::max(out.max_root_lift, static_cast<double>(nearest));
-        }
+        const glm::dvec2 o = root_offsets(motion.roots(), motion.posed_body());
+        out.animated_root_offset = {std::min(out.animated_root_offset.x, o.x), std::max(out.animated_root_offset.y, o.y)};
         if (frame_out) frame_out(f, image);
     }
     return out;

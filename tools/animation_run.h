@@ -22,7 +22,10 @@ struct AnimationResult {
     double fps = 30;
     int width = 0, height = 0;
     std::string renderer;  // the GL renderer's name
-    double max_root_lift = 0;  // the largest distance of a cluster root from the posed body's surface vertices (scene units)
+    // Where the clusters' roots sit on the body: each root's signed distance from its nearest body vertex along that
+    // vertex's normal (scene units; < 0 inside), the extremes over the roots at rest and over every animated frame.
+    // Hair that floats off or sinks in moves these beyond the rest range.
+    glm::dvec2 rest_root_offset{0.0}, animated_root_offset{0.0};
 };
 
 // Reads and checks everything first (the spec, the style and its skinning, the --body: a wrong input writes nothing),

@@ -124,10 +124,11 @@ void add_render(CLI::App& root) {
             const double n = static_cast<double>(r.frames.size());
             std::fprintf(stderr,
                          "animated %zu frames at %dx%d on %s: %.1f ms a frame (motion %.1f: skinning, deformation, shadow grid; "
-                         "the rest the shadow, lighting and shell passes); a still frame %.1f ms; roots within %.2f of the posed "
-                         "body's vertices -> %s … %s, %s\n",
+                         "the rest the shadow, lighting and shell passes); a still frame %.1f ms; the roots' offsets from the "
+                         "body along its normals %.2f … %.2f (at rest %.2f … %.2f) -> %s … %s, %s\n",
                          r.frames.size(), r.width, r.height, r.renderer.c_str(), total / n, motion / n, r.still.total_ms,
-                         r.max_root_lift, coif::cli::animation_frame_path(o->output, 0).c_str(),
+                         r.animated_root_offset.x, r.animated_root_offset.y, r.rest_root_offset.x, r.rest_root_offset.y,
+                         coif::cli::animation_frame_path(o->output, 0).c_str(),
                          coif::cli::animation_frame_path(o->output, static_cast<int>(r.frames.size()) - 1).c_str(), sheet.c_str());
             if (o->json)
                 coif::cli::print_json({{"frames", r.frames.size()},
@@ -136,7 +137,8 @@ void add_render(CLI::App& root) {
                                        {"frame_milliseconds", total / n},
                                        {"motion_milliseconds", motion / n},
                                        {"still_milliseconds", r.still.total_ms},
-                                       {"max_root_distance", r.max_root_lift},
+                                       {"root_offset", {{"rest", {r.rest_root_offset.x, r.rest_root_offset.y}},
+                                                        {"animated", {r.animated_root_offset.x, r.animated_root_offset.y}}}},
                                        {"sheet", sheet}});
             return;
         }
