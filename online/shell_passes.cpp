@@ -135,7 +135,8 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 
 // ---- ShadowPass ------------------------------------------------------------------------------------
 
-double ShadowPass::run(const ShellGpu& gpu, float fibre_width) const {
+double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step) const {
+    const int used = lit_rows(gpu.lighting_rows, lit_step);  // validates
     glFinish();
     const auto t0 = Clock::now();
     if (gpu.body_on && !with_body_) with_body_ = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_shadow.comp"}, std::vector<std::string>{"SHADOW_BODY 1"});
@@ -158,12 +159,26 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width) const {
     glUniform1i(p.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(p.uniform("u_light_count"), gpu.light_count);
     glUniform1i(p.uniform("u_rays"), kShadowRays);
+    glUniform1i(p.uniform("u_rows"), gpu.lighting_rows);
+    glUniform1i(p.uniform("u_lit_step"), lit_step);
+    glUniform1i(p.uniform("u_used"), used);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.shadows.id());
-    const std::size_t pairs = gpu.sample_count * static_cast<std::size_t>(gpu.light_count);
-    glDispatchCompute(static_cast<GLuint>((pairs + 63) / 64), 1, 1);
+    const std::size_t marched = gpu.clusters * static_cast<std::size_t>(used) * static_cast<std::size_t>(gpu.light_count);
+    glDispatchCompute(static_cast<GLuint>((marched + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (lit_step > 1) {  // the samples between the marched ones
+        if (!fill_) fill_ = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_shadow.comp"}, std::vector<std::string>{"SHADOW_FILL 1"});
+        fill_->use();
+        glUniform1i(fill_->uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
+        glUniform1i(fill_->uniform("u_light_count"), gpu.light_count);
+        glUniform1i(fill_->uniform("u_rows"), gpu.lighting_rows);
+        glUniform1i(fill_->uniform("u_lit_step"), lit_step);
+        const std::size_t pairs = gpu.sample_count * static_cast<std::size_t>(gpu.light_count);
+        glDispatchCompute(static_cast<GLuint>((pairs + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     glFinish();
     return wall_ms_since(t0);
 }

@@ -85,10 +85,13 @@ public:
     // change, so the synchronisation costs nothing per frame, and llvmpipe's timer queries miss this dispatch).
     // fibre_width: the fibres' diameter 2r, so that τ = 2r ∫ projected length density is the fibres met. Rays
     // start outside the own cluster: its share is each fragment's own (shaders/lighting/own_cluster.glsl).
-    double run(const ShellGpu& gpu, float fibre_width) const;
+    // lit_step: the lighting pass's step along each cluster's samples (lit_rows): only those samples are marched, and
+    // the ones between get their neighbours' linear interpolation (a second, cheap dispatch).
+    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1) const;
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};
+    mutable std::unique_ptr<Program> fill_;       // the second dispatch of a step > 1 (made on first use)
     mutable std::unique_ptr<Program> with_body_;  // the variant that also marches a body (made on first use)
 };
 

@@ -41,6 +41,7 @@ struct InstanceLights {
     std::uint64_t lights_stamp = 0;
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
+    int shadows_step = 0;
 };
 
 struct ShellRenderer::Impl {
@@ -52,6 +53,7 @@ struct ShellRenderer::Impl {
     // The shadow pass's inputs when it last ran (it reruns only when they or the lights change).
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
+    int shadows_step = 0;   // the lighting step the shadows were marched at
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
     // What gpu->lighting holds the sums of: a frame whose inputs are the same (render()'s shifted frames among them:
     // the jitter moves only the image) reuses them (ShellSettings::reuse_lighting).
@@ -105,6 +107,7 @@ struct ShellRenderer::Impl {
         std::swap(gpu->lights_stamp, l.lights_stamp);
         std::swap(shadows_valid, l.shadows_valid);
         std::swap(shadows_radius, l.shadows_radius);
+        std::swap(shadows_step, l.shadows_step);
     }
 };
 
@@ -306,15 +309,19 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
 void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const ShellSettings& s, bool floor_only) {
     Impl& m = *impl_;
     ShellGpu& gpu = *m.gpu;
-    // Shadow pass: only when the lights or the fibre radius changed.
+    // Shadow pass: only when the lights, the fibre radius or the samples it marches changed. It marches the samples the
+    // lighting pass lights (its step), and every sample for the per-fragment lighting, which reads them all.
     const float radius = fiber_radius(s);
     if (!(radius > 0.0f) || !std::isfinite(radius)) throw Error::parameter("fiber_radius", "must be finite and > 0");
+    const int step = m.lighting_step(s.lighting_step);
+    const int shadow_step = s.lighting_per_fragment ? 1 : step;
     timings_.shadows_ms = 0;
     if (!floor_only && s.shadows && gpu.light_count > 0 &&
-        (!m.shadows_valid || m.shadows_radius != radius)) {
-        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius);
+        (!m.shadows_valid || m.shadows_radius != radius || m.shadows_step != shadow_step)) {
+        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step);
         m.shadows_valid = true;
         m.shadows_radius = radius;
+        m.shadows_step = shadow_step;
         m.lighting_key.valid = false;  // the sums read the shadows
     }
 
@@ -323,7 +330,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const Shel
     auto t_pass = Clock::now();
     timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
     ShellSettings lit = s;
-    lit.lighting_step = timings_.lighting_step = m.lighting_step(s.lighting_step);
+    lit.lighting_step = timings_.lighting_step = step;
     timings_.lighting_ran = !floor_only && m.lighting.run(gpu, lit, view.eye, m.lighting_key);
     if (s.timed) {
         glFinish();

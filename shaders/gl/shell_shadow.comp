@@ -12,9 +12,17 @@
 // for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
 // the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
 // earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
+//
+// Only the lit samples are marched: every u_lit_step-th of each cluster's u_rows (ShellSettings::lighting_step, as the
+// lighting pass lights them), u_used per cluster. SHADOW_FILL 1 is the second dispatch when u_lit_step > 1: each sample
+// between two lit ones gets their linear interpolation, so that every sample holds its shadows (for the per-fragment
+// lighting, which the renderer marches at step 1 anyway, and for read_shadows).
 layout(local_size_x = 64) in;
 #ifndef SHADOW_BODY
 #define SHADOW_BODY 0
+#endif
+#ifndef SHADOW_FILL
+#define SHADOW_FILL 0
 #endif
 
 #include "shaders/gl/lighting_samples.glsl"
@@ -24,7 +32,7 @@ struct GpuLight {
     vec4 radiance;
 };
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
-layout(std430, binding = 4) writeonly buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
+layout(std430, binding = 4) buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
 
 uniform sampler3D u_density;      // M per unit volume: (xx, yy, zz, xy)
 uniform sampler3D u_density_off;  // (xz, yz)
@@ -35,6 +43,9 @@ uniform float u_width;        // the fibres' diameter 2r
 uniform int u_sample_count;
 uniform int u_light_count;
 uniform int u_rays;
+uniform int u_rows;   // lighting samples per cluster
+uniform int u_lit_step;  // every u_lit_step-th is lit (the last is)
+uniform int u_used;   // lit samples per cluster
 #if SHADOW_BODY
 uniform sampler3D u_body;
 uniform float u_body_opacity;    // optical depth per world unit through a body voxel
@@ -73,11 +84,29 @@ vec2 optical_depth(vec3 p, vec3 d) {
     return vec2(sum, body) * h;
 }
 
+#if SHADOW_FILL
 void main() {
     int id = int(gl_GlobalInvocationID.x);
     if (id >= u_sample_count * u_light_count) return;
     int i = id / u_light_count;
     int j = id - i * u_light_count;
+    int row = i - (i / u_rows) * u_rows;
+    int lower = (row / u_lit_step) * u_lit_step;
+    if (lower == row) return;  // lit
+    int first = i - row + lower;
+    shadows[id] = mix(shadows[first * u_light_count + j], shadows[(first + u_lit_step) * u_light_count + j],
+                      float(row - lower) / float(u_lit_step));
+}
+#else
+void main() {
+    int id = int(gl_GlobalInvocationID.x);
+    int per_cluster = u_used * u_light_count;
+    int cluster = id / per_cluster;
+    if (cluster * u_rows >= u_sample_count) return;
+    int rest = id - cluster * per_cluster;
+    int used = rest / u_light_count;
+    int j = rest - used * u_light_count;
+    int i = cluster * u_rows + used * u_lit_step;  // the lit sample
     LightingSample s = samples[i];
     vec3 T = normalize(s.tangent.xyz);
     vec3 l = normalize(lights[j].direction_lambda.xyz);
@@ -101,5 +130,6 @@ void main() {
         direct += exp(-tau);
         fibres += tau;
     }
-    shadows[id] = vec2(direct, fibres) / float(u_rays);
+    shadows[i * u_light_count + j] = vec2(direct, fibres) / float(u_rays);
 }
+#endif

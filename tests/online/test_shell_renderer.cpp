@@ -523,7 +523,9 @@ TEST(ShellRenderer, LightingStepLightsEveryKthSampleAsStepOneDoes) {
     s.lighting_step = 1;
     renderer.draw(camera, s);
     const std::vector<float> all = renderer.read_lighting();
+    const std::vector<glm::vec2> all_shadows = renderer.read_shadows();
     const int rows = renderer.lighting_rows();
+    const std::size_t lights = two_lights().size();
     for (const int step : {2, 4}) {
         s.lighting_step = step;
         renderer.draw(camera, s);
@@ -531,6 +533,21 @@ TEST(ShellRenderer, LightingStepLightsEveryKthSampleAsStepOneDoes) {
         const std::vector<float> some = renderer.read_lighting();  // the lit samples first in each cluster's rows
         for (int k = 0; k <= (rows - 1) / step; ++k)
             for (int q = 0; q < 27; ++q) EXPECT_EQ(some[k * 27 + q], all[k * step * 27 + q]) << step << " " << k;
+        // The shadow pass marched the lit samples alone, to the same values, and interpolated the others.
+        const std::vector<glm::vec2> sh = renderer.read_shadows();
+        for (int r = 0; r < rows; ++r)
+            for (std::size_t j = 0; j < lights; ++j) {
+                const std::size_t i = static_cast<std::size_t>(r) * lights + j;
+                const int lower = r / step * step;
+                if (lower == r) {
+                    EXPECT_EQ(sh[i], all_shadows[i]) << step << " row " << r;
+                } else {
+                    const float f = static_cast<float>(r - lower) / static_cast<float>(step);
+                    const glm::vec2 a = all_shadows[static_cast<std::size_t>(lower) * lights + j];
+                    const glm::vec2 b = all_shadows[static_cast<std::size_t>(lower + step) * lights + j];
+                    EXPECT_NEAR(glm::distance(sh[i], glm::mix(a, b, f)), 0.0f, 1e-5f) << step << " row " << r;
+                }
+            }
     }
     s.lighting_step = 3;  // 3 does not divide the 32 intervals
     EXPECT_THROW(renderer.draw(camera, s), Error);
