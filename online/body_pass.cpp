@@ -2,10 +2,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
 #include "models/core/error.h"
+#include "online/lighting_uniforms.h"
 
 namespace coif::gl {
 namespace {
@@ -41,8 +43,11 @@ BodyPass::BodyPass(const BodyMesh& mesh, const glm::mat3& orientation) {
     check_errors("BodyPass");
 }
 
-std::uint32_t BodyPass::draw(const FrameView& view, glm::vec2 jitter, int width, int height, GLuint lights, int light_count,
-                             glm::vec3 background) {
+std::uint32_t BodyPass::draw(const FrameView& view, glm::vec2 jitter, int width, int height, std::span<const SrbfLight> lights) {
+    if (lights_.id() == 0 || !std::equal(lights.begin(), lights.end(), lights_held_.begin(), lights_held_.end())) {
+        lights_held_.assign(lights.begin(), lights.end());
+        lights_ = make_lights_buffer(lights);
+    }
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
     if (width != width_ || height != height_) {
@@ -59,7 +64,7 @@ std::uint32_t BodyPass::draw(const FrameView& view, glm::vec2 jitter, int width,
     }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, width, height);
-    const float clear_color[4] = {background.x, background.y, background.z, 1.0f};
+    const float clear_color[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // no body: nothing to blend
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, clear_color);
     const float far = 1.0f;
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &far);
@@ -75,22 +80,26 @@ std::uint32_t BodyPass::draw(const FrameView& view, glm::vec2 jitter, int width,
     glUniformMatrix4fv(program_.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
     glUniform3fv(program_.uniform("u_albedo"), 1, &kBodyAlbedo.x);
     glUniform3fv(program_.uniform("u_eye"), 1, &view.eye.x);
-    glUniform1i(program_.uniform("u_light_count"), light_count);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights);
+    glUniform1i(program_.uniform("u_light_count"), static_cast<GLint>(lights.size()));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights_.id());
     glBindVertexArray(vao_.id());
     glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
-    // The colour into the frame, every pixel (and every sample of a multisampled frame).
+    // The body over the frame (premultiplied "over": opaque where the body is, nothing elsewhere), every sample of a
+    // multisampled frame.
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(target));
     copy_.use();
     glBindTextureUnit(0, color_.id());
     glUniform1i(copy_.uniform("u_image"), 0);
     glUniform2i(copy_.uniform("u_origin"), 0, 0);
     glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glBindVertexArray(vao_.id());  // core profile: some vertex array (fullscreen.vert reads none)
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+    glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     check_errors("BodyPass::draw");
     return depth_.id();

@@ -62,6 +62,7 @@ struct ShellRenderer::Impl {
     bool in_render = false;  // render() draws again or in tiles what overflows: no warning then
     std::map<int, int> lighting_steps;      // ShellSettings::lighting_step → the step this style allows (lighting_step_within)
     std::unique_ptr<BodyPass> body;         // set_body's, drawn by draw_view
+    std::vector<SrbfLight> lights;          // set_lights' (world space), which light the body in draw_view
     std::optional<BodyMesh> body_mesh;      // and its mesh, voxelized again into each new shadow grid
     glm::mat3 body_orientation{1.0f};
     DensityGrid grid;                       // the hair's own shadow grid (set_body extends a copy of it)
@@ -164,6 +165,7 @@ ShellRenderer::~ShellRenderer() = default;
 
 void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
     impl_->gpu->set_lights(lights);
+    impl_->lights.assign(lights.begin(), lights.end());
     impl_->shadows_valid = false;
 }
 
@@ -181,6 +183,15 @@ void ShellRenderer::set_body(const BodyMesh* body, const glm::mat3& orientation,
     if (!regrid) return;
     m.upload_grid();
     stats_.grid_x = m.grid_dims.x, stats_.grid_y = m.grid_dims.y, stats_.grid_z = m.grid_dims.z;
+}
+
+bool ShellRenderer::has_body() const { return impl_->body != nullptr; }
+
+std::uint32_t ShellRenderer::draw_body(const FrameView& view, int width, int height, std::span<const SrbfLight> lights) {
+    if (!impl_->body) return 0;
+    const std::uint32_t depth = impl_->body->draw(view, glm::vec2(0.0f), width, height, lights);
+    glViewport(0, 0, width, height);
+    return depth;
 }
 
 void ShellRenderer::set_shadow_grid(DensityGrid grid) {
@@ -205,8 +216,9 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
         float off = 0.0f;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) off = std::max(off, std::abs(E[i][j]));
-        if (!(off <= 1e-3f) || !(glm::determinant(R) > 0.0f) || transforms[c][0][3] != 0.0f || transforms[c][1][3] != 0.0f ||
-            transforms[c][2][3] != 0.0f || transforms[c][3][3] != 1.0f)
+        const glm::vec3 t(transforms[c][3]);
+        if (!(off <= 1e-3f) || !(glm::determinant(R) > 0.0f) || !std::isfinite(t.x + t.y + t.z) || transforms[c][0][3] != 0.0f ||
+            transforms[c][1][3] != 0.0f || transforms[c][2][3] != 0.0f || transforms[c][3][3] != 1.0f)
             throw Error::parameter("cluster transform " + std::to_string(c), "must be a rotation and a translation");
     }
     for (std::size_t i = 0; i < p.instances.size(); ++i) {
@@ -244,8 +256,7 @@ void ShellRenderer::draw_view(const FrameView& view, int width, int height, glm:
     d.target.viewport = glm::ivec4(0, 0, width, height);
     d.jitter = jitter;
     if (impl_->body && !floor_only) {  // the body first, opaque; the hair over it, behind it hidden
-        d.target.scene_depth = impl_->body->draw(view, jitter, width, height, impl_->gpu->lights.id(), impl_->gpu->light_count,
-                                                 s.background);
+        d.target.scene_depth = impl_->body->draw(view, jitter, width, height, impl_->lights);
         d.target.depth_test = DepthTest::less_equal;
         d.target.over = true;
     }

@@ -111,6 +111,12 @@ public:
     // regrid false: the body is not voxelized now, because the caller gives a new shadow grid next (set_shadow_grid,
     // which voxelizes it; online/scene/hair_motion.h, once per frame).
     void set_body(const BodyMesh* body, const glm::mat3& orientation = glm::mat3(1.0f), bool regrid = true);
+    // Draws the body (set_body; none: nothing, returns 0) seen through `view`, lit by `lights` (world space), opaque over
+    // the framebuffer bound for drawing, width × height at its origin; returns its depth texture, to pass to draw_frame as
+    // the scene's depth (DepthTest::less_equal) with FrameTarget::over (coif view does). draw() and render() do this
+    // themselves.
+    std::uint32_t draw_body(const FrameView& view, int width, int height, std::span<const SrbfLight> lights);
+    bool has_body() const;
     // Moves every cluster rigidly (motion: online/scene/hair_motion.h): transforms[c] takes cluster c from where it was
     // cooked to where it is now, in the shells' space (a rotation and a translation). The instances and lighting samples
     // are placed anew from their cooked copies, and the shadows and the lighting pass follow on the next draw. The SATF

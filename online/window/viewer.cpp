@@ -584,6 +584,15 @@ private:
                 draw_environment(cam, projection, width, height);
                 t.over = true;
             }
+            if (r.has_body()) {  // coif view --body: the body over the background, the hair over both, hidden behind it
+                if (!environment_) {
+                    const float bg[4] = {s.background.x, s.background.y, s.background.z, 1.0f};
+                    glClearBufferfv(GL_COLOR, 0, bg);
+                }
+                t.scene_depth = r.draw_body(FrameView::of(cam.view(), projection), width, height, scene_.lights);
+                t.depth_test = DepthTest::less_equal;
+                t.over = true;
+            }
             r.draw_frame(cam.view(), projection, scene_.lights, s, t, {});
             if (s.compositing != Compositing::exact || r.fragment_list_stats().dropped == 0) break;
         }

@@ -98,6 +98,25 @@ TEST(Viewer, ScriptedParametersAndCameraDrawAsCoifRenderDoes) {
     fs::remove_all(dir);
 }
 
+TEST(Viewer, ABodyIsShownAsCoifRenderDrawsIt) {
+    // coif view --body: the window's frame is coif render --body's PNG (the body, the hair over it, hidden behind it).
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-body");
+    const std::string d = dir.string() + "/";
+    // A box of 12 cm about the origin, where the default style's head would be.
+    write_text(dir / "head.obj", "v -6 -6 -6\nv 6 -6 -6\nv 6 6 -6\nv -6 6 -6\nv -6 -6 6\nv 6 -6 6\nv 6 6 6\nv -6 6 6\n"
+                                 "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
+    write_text(dir / "script.json", R"([{"frames": 1}, {"panel": false}, {"background": false}, {"capture": ")" + d + R"(shown.png"}])");
+    auto r = run_coif("view --samples 1 --body '" + d + "head.obj'" + kSize + "--script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_coif("render --samples 1 --body '" + d + "head.obj'" + kSize + "-o '" + d + "body.png'").exit_code, 0);
+    ASSERT_EQ(run_coif("render --samples 1" + kSize + "-o '" + d + "bare.png'").exit_code, 0);
+    const Image shown = read_image(dir / "shown.png");
+    EXPECT_LE(steps_apart(shown, read_image(dir / "body.png")), 1) << "the window shows coif render --body's image";
+    EXPECT_GT(max_difference(shown, read_image(dir / "bare.png")), 0.05) << "the body shows";
+    fs::remove_all(dir);
+}
+
 TEST(Viewer, TheEnvironmentTurnsAndChangesAsCoifRenderLightsIt) {
     REQUIRE_WINDOW();
     const fs::path dir = test::scratch_dir("viewer-env");
