@@ -55,7 +55,7 @@ AnimationSpec parse_animation_spec(std::string_view text, const fs::path& file) 
         throw Error(file, "JSON", std::string("not valid JSON: ") + e.what());
     }
     if (!doc.is_object()) rd.fail("/", "an animation is a JSON object");
-    rd.only(doc, "", {"frames", "fps", "bones", "pivot", "keys"});
+    rd.only(doc, "", {"frames", "fps", "bones", "pivot", "keys", "dynamics"});
     AnimationSpec s;
     if (!doc.contains("frames")) rd.fail("/frames", "missing field \"frames\"");
     const double frames = rd.number(doc["frames"], "/frames");
@@ -85,6 +85,36 @@ AnimationSpec parse_animation_spec(std::string_view text, const fs::path& file) 
         if (k.contains("rotate_deg")) key.rotate_deg = rd.vec3(k["rotate_deg"], p + "/rotate_deg");
         if (k.contains("translate")) key.translate = rd.vec3(k["translate"], p + "/translate");
         s.keys.push_back(key);
+    }
+    if (doc.contains("dynamics")) {
+        const json& d = doc["dynamics"];
+        if (!d.is_object()) rd.fail("/dynamics", "expected an object");
+        rd.only(d, "/dynamics", {"wind", "gust", "gravity", "damping", "bend_stiffness", "shape_stiffness", "collision_margin", "substeps", "iterations", "seed"});
+        DynamicsParams p;
+        p.dt = static_cast<float>(1.0 / s.fps);
+        const auto count = [&](const char* key, double lo, double hi) {
+            const double v = rd.number(d[key], std::string("/dynamics/") + key);
+            if (v != std::floor(v) || v < lo || v > hi)
+                rd.fail(std::string("/dynamics/") + key, "must be a whole number in " + std::to_string(static_cast<long long>(lo)) + ".." +
+                                                             std::to_string(static_cast<long long>(hi)));
+            return v;
+        };
+        if (d.contains("wind")) p.wind = glm::vec3(rd.vec3(d["wind"], "/dynamics/wind"));
+        if (d.contains("gravity")) p.gravity = glm::vec3(rd.vec3(d["gravity"], "/dynamics/gravity"));
+        if (d.contains("gust")) p.gust = static_cast<float>(rd.number(d["gust"], "/dynamics/gust"));
+        if (d.contains("damping")) p.damping = static_cast<float>(rd.number(d["damping"], "/dynamics/damping"));
+        if (d.contains("bend_stiffness")) p.bend_stiffness = static_cast<float>(rd.number(d["bend_stiffness"], "/dynamics/bend_stiffness"));
+        if (d.contains("shape_stiffness")) p.shape_stiffness = static_cast<float>(rd.number(d["shape_stiffness"], "/dynamics/shape_stiffness"));
+        if (d.contains("collision_margin")) p.collision_margin = static_cast<float>(rd.number(d["collision_margin"], "/dynamics/collision_margin"));
+        if (d.contains("substeps")) p.substeps = static_cast<int>(count("substeps", 1, 64));
+        if (d.contains("iterations")) p.iterations = static_cast<int>(count("iterations", 1, 64));
+        if (d.contains("seed")) p.seed = static_cast<std::uint32_t>(count("seed", 0, 4294967295.0));
+        try {
+            validate(p);
+        } catch (const Error& e) {
+            rd.fail("/dynamics", e.problem() + " (" + e.place() + ")");
+        }
+        s.dynamics = p;
     }
     return s;
 }

@@ -53,6 +53,7 @@ AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& she
     gl::HairScene hs(hair_scene_desc(scene, std::move(inputs), shell.db, shell.lighting_rows, absorption ? &*absorption : nullptr));
     gl::ShellRenderer& renderer = *hs.renderer;
     gl::HairMotion motion(hs.style, body, hair_orientation, body_orientation);
+    if (spec.dynamics) motion.simulate(*spec.dynamics);
 
     AnimationResult out;
     out.fps = spec.fps;

@@ -9,6 +9,7 @@
 
 namespace coif::gl {
 namespace {
+constexpr float kColliderCell = 2.0f;  // the body collider's hash cell, scene units (cm): its vertices lie ~1 cm apart
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 }  // namespace
@@ -32,10 +33,22 @@ HairMotion::HairMotion(const HairStyle& style, const BodyMesh& body, const glm::
     influences_ = style.skinning->clusters;
     strands_ = sample_strands(style, StrandSampling{}, &strand_cluster_);  // the strands cook_shells voxelizes
     for (glm::vec3& p : strands_.points) p = hair_orientation * p;
-    for (const Cluster& c : style.clusters) rest_roots_.push_back(hair_orientation * glm::vec3(c.placement.apply(c.shape->position(0.0))));
+    for (const Cluster& c : style.clusters) {
+        rest_roots_.push_back(hair_orientation * glm::vec3(c.placement.apply(c.shape->position(0.0))));
+        std::vector<glm::vec3> chain;  // the axis, sampled evenly in t, for the dynamics
+        for (int i = 0; i < kChainPoints; ++i)
+            chain.push_back(hair_orientation * glm::vec3(c.placement.apply(c.shape->position(static_cast<double>(i) / (kChainPoints - 1)))));
+        chains_.push_back(std::move(chain));
+    }
     roots_ = rest_roots_;
     transforms_.assign(style.clusters.size(), glm::mat4(1.0f));
     moved_ = strands_;
+}
+
+void HairMotion::simulate(const DynamicsParams& params) {
+    validate(params);
+    dynamics_.emplace(chains_, params);
+    dynamics_started_ = false;
 }
 
 void HairMotion::pose(ShellRenderer& renderer, const BonePose& pose) {
@@ -44,10 +57,18 @@ void HairMotion::pose(ShellRenderer& renderer, const BonePose& pose) {
         throw Error::parameter("pose", "it has " + std::to_string(pose.transforms.size()) + " bones, the body " +
                                            std::to_string(body_.bones.size()));
     skin_body(body_, pose, posed_.positions, posed_.normals);
-    for (std::size_t c = 0; c < influences_.size(); ++c) {
-        transforms_[c] = cluster_transform(influences_[c], bone_of_, pose, rest_roots_[c]);
-        roots_[c] = glm::vec3(transforms_[c] * glm::vec4(rest_roots_[c], 1.0f));
+    for (std::size_t c = 0; c < influences_.size(); ++c) transforms_[c] = cluster_transform(influences_[c], bone_of_, pose, rest_roots_[c]);
+    if (dynamics_) {  // the skinned transforms drive the roots; the simulated axes give the clusters' transforms
+        if (!dynamics_started_) {
+            dynamics_->reset(transforms_);
+            dynamics_started_ = true;
+        } else {
+            collider_.set(posed_.positions, posed_.normals, kColliderCell);
+            dynamics_->step(transforms_, collider_);
+        }
+        for (std::size_t c = 0; c < transforms_.size(); ++c) transforms_[c] = dynamics_->cluster_transform(c);
     }
+    for (std::size_t c = 0; c < influences_.size(); ++c) roots_[c] = glm::vec3(transforms_[c] * glm::vec4(rest_roots_[c], 1.0f));
     timings_.skinning_ms = ms_since(t0);
     t0 = Clock::now();
     renderer.set_cluster_transforms(transforms_);

@@ -9,9 +9,11 @@
 // keeps its density. That holds while clusters move as rigid bodies; strands that bend within a cluster (simulation, a
 // cluster spanning a joint) would change the sectors' densities, which this does not follow.
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "models/character.h"
+#include "models/hair_dynamics.h"
 #include "models/hair_style.h"
 #include "models/skinning.h"
 #include "models/strands.h"
@@ -20,7 +22,8 @@
 namespace coif::gl {
 
 struct MotionTimings {  // of the last pose(), wall-clock milliseconds
-    double skinning_ms = 0, deformation_ms = 0, shadow_grid_ms = 0;
+    double skinning_ms = 0;    // the body's vertices and the clusters' transforms, with the simulation when on
+    double deformation_ms = 0, shadow_grid_ms = 0;
 };
 
 class HairMotion {
@@ -36,6 +39,13 @@ public:
     const std::vector<std::string>& bones() const { return body_.bones; }
     // Poses the hair and the body in `renderer` (made from the same style, with this body set or not).
     void pose(ShellRenderer& renderer, const BonePose& pose);
+    // From the next pose on, the clusters' axes are simulated (models/hair_dynamics.h) with their roots on the skinned
+    // ones, colliding with the posed body, one time step of `params.dt` per pose; each cluster is drawn by the rigid
+    // transform that matches its simulated axis (shape matching). The first pose after this starts the simulation at
+    // rest there (as after a teleport: reset_dynamics). Throws coif::Error::parameter for bad parameters.
+    void simulate(const DynamicsParams& params);
+    void reset_dynamics() { dynamics_started_ = false; }
+    const ClusterDynamics* dynamics() const { return dynamics_ ? &*dynamics_ : nullptr; }
     const MotionTimings& timings() const { return timings_; }
     // The posed body of the last pose() (the rest body before), in the renderer's space.
     const BodyMesh& posed_body() const { return posed_; }
@@ -50,10 +60,14 @@ private:
     std::vector<BoneInfluence> influences_;  // per cluster, over the style's bones
     std::vector<int> bone_of_;               // the style's bones → the body's
     std::vector<glm::vec3> rest_roots_, roots_;
+    std::vector<std::vector<glm::vec3>> chains_;  // each cluster's axis at rest (kChainPoints points)
     std::vector<glm::mat4> transforms_;
     BonePose rest_;
     MotionTimings timings_;
     Strands moved_;  // scratch
+    std::optional<ClusterDynamics> dynamics_;
+    bool dynamics_started_ = false;
+    BodyCollider collider_;
 };
 
 }  // namespace coif::gl

@@ -143,6 +143,13 @@ TEST(Animation, KeysAreInterpolatedAndTheOtherBonesRest) {
     EXPECT_NEAR(yaw(4), 0.0f, 1e-3f);
     EXPECT_NEAR(animation_pose(s, body.bones, rest, 2).transforms[1].translation.y, 1.0f, 1e-6f);
     EXPECT_EQ(animation_pose(s, body.bones, rest, 2).transforms[0].rotation, glm::quat(1, 0, 0, 0));  // a rests
+    EXPECT_FALSE(s.dynamics);
+    const AnimationSpec windy = parse_animation_spec(
+        R"({"frames": 2, "fps": 60, "bones": ["b"], "keys": [{"frame": 0}], "dynamics": {"wind": [300, 0, 0], "seed": 4}})", "w.json");
+    ASSERT_TRUE(windy.dynamics);
+    EXPECT_FLOAT_EQ(windy.dynamics->dt, 1.0f / 60.0f);
+    EXPECT_EQ(windy.dynamics->wind, glm::vec3(300, 0, 0));
+    EXPECT_EQ(windy.dynamics->seed, 4u);
     const AnimationSpec other = parse_animation_spec(R"({"frames": 1, "bones": ["nose"], "keys": [{"frame": 0}]})", "x.json");
     EXPECT_THROW(animation_pose(other, body.bones, rest, 0), Error);  // no such bone
 }
@@ -169,6 +176,10 @@ TEST(Animation, BadSpecsAreRefusedNamingTheField) {
     refused(R"({"frames": 2, "bones": [], )" + keys + "}", "/bones");
     refused(R"({"frames": 2, "bones": ["b"], "keys": []})", "/keys");
     refused(R"([1, 2])", "a JSON object");
+    refused(R"({"frames": 2, "bones": ["b"], "dynamics": {"damping": 2}, )" + keys + "}", "/dynamics: must be in [0, 1]");
+    refused(R"({"frames": 2, "bones": ["b"], "dynamics": {"substeps": 0}, )" + keys + "}", "/dynamics/substeps");
+    refused(R"({"frames": 2, "bones": ["b"], "dynamics": {"wind": [1, 2]}, )" + keys + "}", "/dynamics/wind");
+    refused(R"({"frames": 2, "bones": ["b"], "dynamics": {"stiff": 1}, )" + keys + "}", "unknown key \"stiff\"");
 }
 
 }  // namespace

@@ -151,6 +151,16 @@ TEST(Cli, AnimateTurnsTheRatboysHeadAndTheMohawkStaysOnIt) {
     EXPECT_EQ(sheet.height, 2 * 96);
     // The frames differ: the head turned.
     EXPECT_NE(coif::read_file_bytes(dir / "turn_0000.png"), coif::read_file_bytes(dir / "turn_0002.png"));
+    // Simulated in a wind: the same bounds hold for the roots (they are pinned to the skin), and the hair moved.
+    std::ofstream(dir / "windy.json") << R"({"frames": 3, "bones": ["frenchHornMonster_head_JNT"],
+        "keys": [{"frame": 0, "rotate_deg": [0, -30, 0]}, {"frame": 2, "rotate_deg": [0, 30, 0]}], "dynamics": {"wind": [800, 0, 0]}})";
+    r = run_coif("render --style '" + (dir / "mohawk.json").string() + "' --body '" + mesh.string() + "' --animate '" +
+                 (dir / "windy.json").string() + "' --width 96 --height 96 --samples 1 --json -o '" + (dir / "windy.png").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto w = nlohmann::json::parse(r.out)["root_offset"]["animated"];
+    EXPECT_NEAR(w[0].get<double>(), rest[0].get<double>(), 0.2);
+    EXPECT_NEAR(w[1].get<double>(), rest[1].get<double>(), 0.2);
+    EXPECT_NE(coif::read_file_bytes(dir / "windy_0002.png"), coif::read_file_bytes(dir / "turn_0002.png"));
     fs::remove_all(dir);
 }
 
