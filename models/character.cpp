@@ -360,4 +360,68 @@ std::optional<int> find_bone(const std::vector<std::string>& bones, const std::s
     return static_cast<int>(it - bones.begin());
 }
 
+BodyMesh scalp_from_roots(const std::vector<glm::vec3>& roots, int segments) {
+    if (roots.size() < 4) throw Error::parameter("scalp", "needs at least 4 roots");
+    // The sphere |r − c|² = R²: linear least squares in (c, k = R² − |c|²) of 2 c·r + k = |r|², about the roots' mean
+    // (for conditioning).
+    glm::dvec3 mean(0.0);
+    for (const glm::vec3& r : roots) mean += glm::dvec3(r);
+    mean /= static_cast<double>(roots.size());
+    double N[4][4] = {}, rhs[4] = {};
+    for (const glm::vec3& r : roots) {
+        const glm::dvec3 q = glm::dvec3(r) - mean;
+        const double row[4] = {2.0 * q.x, 2.0 * q.y, 2.0 * q.z, 1.0}, y = glm::dot(q, q);
+        for (int i = 0; i < 4; ++i) {
+            rhs[i] += row[i] * y;
+            for (int j = 0; j < 4; ++j) N[i][j] += row[i] * row[j];
+        }
+    }
+    // Gaussian elimination with partial pivoting on the 4 × 4 normal equations.
+    for (int col = 0; col < 4; ++col) {
+        int best = col;
+        for (int r = col + 1; r < 4; ++r)
+            if (std::abs(N[r][col]) > std::abs(N[best][col])) best = r;
+        if (!(std::abs(N[best][col]) > 1e-12)) throw Error::parameter("scalp", "the roots do not fix a sphere (are they on a line or a plane?)");
+        std::swap(N[col], N[best]);
+        std::swap(rhs[col], rhs[best]);
+        for (int r = col + 1; r < 4; ++r) {
+            const double f = N[r][col] / N[col][col];
+            for (int j = col; j < 4; ++j) N[r][j] -= f * N[col][j];
+            rhs[r] -= f * rhs[col];
+        }
+    }
+    double x[4];
+    for (int r = 3; r >= 0; --r) {
+        double v = rhs[r];
+        for (int j = r + 1; j < 4; ++j) v -= N[r][j] * x[j];
+        x[r] = v / N[r][r];
+    }
+    const glm::dvec3 c = mean + glm::dvec3(x[0], x[1], x[2]);
+    std::vector<double> distance;
+    for (const glm::vec3& r : roots) distance.push_back(glm::distance(glm::dvec3(r), c));
+    std::nth_element(distance.begin(), distance.begin() + static_cast<std::ptrdiff_t>(distance.size() / 2), distance.end());
+    const double radius = distance[distance.size() / 2];
+    if (!(radius > 0.0) || !std::isfinite(radius)) throw Error::parameter("scalp", "the roots do not fix a sphere");
+    const glm::dvec3 radii(radius);
+    const glm::dmat3 V(1.0);
+    // The mesh: a UV sphere mapped onto the ellipsoid.
+    BodyMesh m;
+    const int nu = std::max(segments, 8), nv = nu / 2;
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const double th = kPi * j / nv, ph = kTwoPi * i / nu;
+            const glm::dvec3 s(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+            const glm::dvec3 local = radii * s;
+            m.positions.push_back(glm::vec3(c + V * local));
+            m.normals.push_back(glm::vec3(glm::normalize(V * (s / radii))));
+        }
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * nu + (i % nu)); };
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return m;
+}
+
 }  // namespace coif

@@ -81,6 +81,13 @@ StrandSkinning parse_tfxbone(const std::vector<std::byte>& bytes, const std::fil
 const std::string& body_extensions();
 std::string body_format_name(const std::filesystem::path& path);
 
+// A scalp for hair without a head (`coif render --scalp`): the sphere fitted to the roots (algebraic least squares,
+// its radius the roots' median distance from its centre, so that they lie on it), as a closed mesh (`segments` around,
+// segments / 2 from pole to pole; outward normals; no bones). A sphere is the ellipsoid a cap of roots fixes: their
+// spread along the head's height is too short to fit its own axis. Throws coif::Error::parameter for fewer than 4
+// roots, or roots on a line or a plane.
+BodyMesh scalp_from_roots(const std::vector<glm::vec3>& roots, int segments = 48);
+
 // For each of `from`'s bones, the index of the bone of the same name in `to`, or −1 when `to` has none.
 std::vector<int> bone_map(const std::vector<std::string>& from, const std::vector<std::string>& to);
 // The index of the bone named `name`, or nullopt.

@@ -32,7 +32,7 @@ coif::gl::ViewerOptions viewer_options(const ViewOptions& opts) {
     if (!o->script.empty()) vo.script = coif::gl::read_viewer_script(o->script);
     // The lights as read: the viewer turns them (live, --rotate-lights to start with).
     coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->shell.env);
-    if (!o->shell.body.empty()) inputs.body = coif::read_body(o->shell.body);
+    inputs.body = o->shell.body_mesh(inputs);
     vo.rotate_lights_deg = o->shell.rotate_lights_deg;
     (void)coif::cli::lights_rotation(vo.rotate_lights_deg);  // refused now if not finite
     vo.settings = o->shell.settings(inputs);

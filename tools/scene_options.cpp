@@ -167,6 +167,9 @@ void ShellOptions::add_to(CLI::App* app) {
                     "and shadows the hair (within the hair's box). TressFX's .tfxmesh is read from metres into centimetres, "
                     "the frame of its .tfx strands; an .obj is kept as stored, and must be in the strand file's units and axes")
         ->check(CLI::ExistingFile);
+    app->add_flag("--scalp", scalp,
+                  "For hair without a head: a sphere fitted to the style's cluster roots (they lie on it), drawn and "
+                  "shadowing as --body does");
     app->add_option("--lighting-rows", lighting_rows,
                     "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))
@@ -210,8 +213,20 @@ gl::ShellSettings ShellOptions::settings(const SceneInputs& inputs) const {
 SceneInputs ShellOptions::read_inputs(const SceneOptions& scene) const {
     SceneInputs in = read_scene_inputs(scene, env);
     in.lights = rotate_srbf_lights_y(in.lights, lights_rotation(rotate_lights_deg));
-    if (!body.empty()) in.body = read_body(body);
+    in.body = body_mesh(in);
     return in;
+}
+
+std::optional<BodyMesh> ShellOptions::body_mesh(const SceneInputs& inputs) const {
+    if (scalp && !body.empty()) throw Error::parameter("option --scalp", "give either --body or --scalp");
+    if (!body.empty()) return read_body(body);
+    if (!scalp) return std::nullopt;
+    if (inputs.cooked) throw Error::parameter("option --scalp", "needs a style's roots, not a baked .coif asset");
+    // The roots and their directions in the strand file's frame (the scene turns a body from there).
+    const glm::mat3 to_file = glm::transpose(style_source_rotation(inputs.style));
+    std::vector<glm::vec3> roots;
+    for (const Cluster& c : inputs.style.clusters) roots.push_back(to_file * glm::vec3(c.placement.apply(c.shape->position(0.0))));
+    return scalp_from_roots(roots);
 }
 
 std::optional<AbsorptionMap> ShellOptions::absorption_map(const SceneInputs& inputs) const {

@@ -97,8 +97,13 @@ struct ShellOptions {
     float radius = 0.0f;
     std::vector<float> background;
     double rotate_lights_deg = 0;
+    bool scalp = false;
 
     void add_to(CLI::App* app);
+    // The --body mesh, or with --scalp the ellipsoid fitted to the style's roots (models/character.h), in the strand
+    // file's frame as HairSceneDesc::body wants it; none without either. Throws coif::Error for both, or --scalp with an
+    // asset.
+    std::optional<BodyMesh> body_mesh(const SceneInputs& inputs) const;
     // The parameters to draw with: an asset's baked ones (else the library's), then --params, then the options.
     gl::ShellSettings settings(const SceneInputs& inputs) const;
     // read_scene_inputs with these options' --env, the lights turned by --rotate-lights, and the --body mesh.

@@ -64,6 +64,29 @@ TEST(Character, MohawkSkinningMatchesProvenanceAndTheStrands) {
     EXPECT_EQ(map[0], 5);  // the head
 }
 
+TEST(Character, TheScalpIsTheSphereOfTheRoots) {
+    // Roots on the upper third of a sphere of radius 9 about (1, 2, 3): the fit finds it; the mesh's vertices lie on it
+    // with outward normals.
+    std::vector<glm::vec3> roots;
+    for (int i = 0; i < 12; ++i)
+        for (int j = 1; j <= 4; ++j) {
+            const float th = 0.25f * static_cast<float>(j), ph = 0.5236f * static_cast<float>(i);
+            roots.push_back(glm::vec3(1, 2, 3) + 9.0f * glm::vec3(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)));
+        }
+    const BodyMesh s = scalp_from_roots(roots, 16);
+    for (std::size_t i = 0; i < s.positions.size(); ++i) {
+        ASSERT_NEAR(glm::distance(s.positions[i], glm::vec3(1, 2, 3)), 9.0f, 1e-3f) << i;
+        ASSERT_GT(glm::dot(s.normals[i], s.positions[i] - glm::vec3(1, 2, 3)), 0.0f) << i;
+    }
+    EXPECT_EQ(s.triangles.size(), 2u * 16u * 8u);
+    EXPECT_TRUE(s.bones.empty());
+    // Too few roots, or roots on a circle (a plane: no one sphere), are refused.
+    EXPECT_THROW(scalp_from_roots(std::vector<glm::vec3>(roots.begin(), roots.begin() + 3)), Error);
+    std::vector<glm::vec3> ring;
+    for (int i = 0; i < 12; ++i) ring.push_back({std::cos(0.5236f * i), 0.0f, std::sin(0.5236f * i)});
+    EXPECT_THROW(scalp_from_roots(ring), Error);
+}
+
 class BadCharacterFile : public ::testing::Test {
 protected:
     void SetUp() override { dir = test::scratch_dir("character"); }

@@ -53,6 +53,19 @@ inline HairStyle prototype_and_instance() {
     return parse_style(text, "<test style>");
 }
 
+// Two straight clusters hanging along −y from y = 0 to −10 at x = −3 ("left") and x = +3 ("right"); `skinned`: the left
+// one on bone "a", the right one on bone "b" (models/skinning.h).
+inline HairStyle two_cluster_style(bool skinned = false) {
+    const std::string text = std::string(R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [{"name": "left", "trajectory": [[-3, 0, 0], [-3, -5, 0], [-3, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}},
+                   {"name": "right", "trajectory": [[3, 0, 0], [3, -5, 0], [3, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}}])") +
+                             (skinned ? R"(, "skinning": {"bones": ["a", "b"], "clusters": [[[0, 1.0]], [[1, 1.0]]]})" : "") + "}";
+    return parse_style(text, "<two clusters>");
+}
+
 inline std::vector<SrbfLight> two_lights() {
     SrbfLight a, b;
     a.L = glm::vec3(2.0f, 1.8f, 1.5f);

@@ -13,17 +13,6 @@
 namespace coif {
 namespace {
 
-// Two straight clusters hanging along −y from y = 0 to −10, at x = −3 and x = +3.
-HairStyle two_clusters() {
-    const char* text = R"({"format": "coif-style", "version": 1,
-      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
-      "clusters": [{"name": "left", "trajectory": [[-3, 0, 0], [-3, -5, 0], [-3, -10, 0]], "a": [1.0], "b": [1.0],
-                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}},
-                   {"name": "right", "trajectory": [[3, 0, 0], [3, -5, 0], [3, -10, 0]], "a": [1.0], "b": [1.0],
-                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}}]})";
-    return parse_style(text, "<two clusters>");
-}
-
 // A rectangle with corners a, a + u, a + u + v, a + v (two triangles), not skinned.
 BodyMesh quad(glm::vec3 a, glm::vec3 u, glm::vec3 v) {
     BodyMesh m;
@@ -36,7 +25,7 @@ BodyMesh quad(glm::vec3 a, glm::vec3 u, glm::vec3 v) {
 
 struct Scene {
     std::unique_ptr<gl::Context> context = gl::Context::headless();
-    gl::ShellRenderer renderer{cook_shells(two_clusters(), test::test_index(), glm::mat3(1.0f))};
+    gl::ShellRenderer renderer{cook_shells(test::two_cluster_style(), test::test_index(), glm::mat3(1.0f))};
 };
 
 TEST(Body, HidesTheHairBehindItAndNothingElse) {

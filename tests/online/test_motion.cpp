@@ -19,18 +19,6 @@
 namespace coif {
 namespace {
 
-// Two clusters hanging from y = 0 at x = ∓3; the left one skinned to bone "a", the right one to "b".
-HairStyle skinned_clusters() {
-    const char* text = R"({"format": "coif-style", "version": 1,
-      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
-      "clusters": [{"name": "left", "trajectory": [[-3, 0, 0], [-3, -5, 0], [-3, -10, 0]], "a": [1.0], "b": [1.0],
-                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}},
-                   {"name": "right", "trajectory": [[3, 0, 0], [3, -5, 0], [3, -10, 0]], "a": [1.0], "b": [1.0],
-                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}}],
-      "skinning": {"bones": ["a", "b"], "clusters": [[[0, 1.0]], [[1, 1.0]]]}})";
-    return parse_style(text, "<skinned clusters>");
-}
-
 // A "head": two horizontal plates at y = 1 over the roots, x = −5 … −1 on bone "a" and x = 1 … 5 on bone "b".
 BodyMesh skinned_head() {
     BodyMesh m;
@@ -50,7 +38,7 @@ BodyMesh skinned_head() {
 
 struct Scene {
     std::unique_ptr<gl::Context> context = gl::Context::headless();
-    HairStyle style = skinned_clusters();
+    HairStyle style = test::two_cluster_style(true);
     gl::ShellRenderer renderer{cook_shells(style, test::test_index(), glm::mat3(1.0f))};
     Camera camera = Camera::orbit(renderer.bounds_min(), renderer.bounds_max(), 0.4f, 0.2f, 120, 96);
     Scene() { renderer.set_lights(test::two_lights()); }

@@ -124,6 +124,27 @@ TEST(Cli, AnimateRefusesBadInputAndWritesNothing) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, AScalpIsDrawnForHairWithoutAHead) {
+    const auto dir = test::scratch_dir("cli-scalp");
+    const std::string size = " --width 96 --height 72 --samples 1 ";
+    auto r = run_coif("render --scalp" + size + "-o '" + (dir / "scalp.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_coif("render" + size + "-o '" + (dir / "bare.exr").string() + "'").exit_code, 0);
+    const coif::Image a = coif::read_image(dir / "scalp.exr"), b = coif::read_image(dir / "bare.exr");
+    EXPECT_NE(a.pixels, b.pixels) << "the scalp shows, and shadows the hair";
+    std::ofstream(dir / "box.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    r = run_coif("render --scalp --body '" + (dir / "box.obj").string() + "'" + size + "-o '" + (dir / "both.png").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("either --body or --scalp"));
+    ASSERT_EQ(run_coif("bake @default -o '" + (dir / "hair.coif").string() + "'").exit_code, 0);
+    r = run_coif("render --scalp --style '" + (dir / "hair.coif").string() + "'" + size + "-o '" + (dir / "asset.png").string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("not a baked .coif asset"));
+    EXPECT_FALSE(fs::exists(dir / "both.png"));
+    EXPECT_FALSE(fs::exists(dir / "asset.png"));
+    fs::remove_all(dir);
+}
+
 TEST(Cli, AnimateTurnsTheRatboysHeadAndTheMohawkStaysOnIt) {
     // The done-when of issue 19 at a small size: the mohawk imported with its skinning, on the Ratboy body, through a
     // head turn; every frame and the contact sheet written, and the clusters' roots on the skin as at rest.
