@@ -26,7 +26,8 @@ void add_bench_animate(CLI::App& root) {
     CLI::App* cmd = bench->add_subcommand(
         "animate",
         "Per-frame cost of hair that moves: every frame of --animate SPEC (as coif render --animate, nothing written),\n"
-        "broken down into skinning (the body's vertices and the clusters' transforms), deformation (the clusters'\n"
+        "broken down into skinning (the body's vertices and the clusters' transforms; with the spec's \"dynamics\", the\n"
+        "simulation too), deformation (the clusters'\n"
         "instances and lighting samples placed and uploaded), shadow grid (the moved strands and the body voxelized and\n"
         "uploaded), and the renderer's passes that follow: the shadow march, the lighting, the shells. Beside them, the\n"
         "same scene's still frame (drawn twice at rest: the second reuses the shadows and the lighting). Medians over the\n"
@@ -64,7 +65,7 @@ void add_bench_animate(CLI::App& root) {
             return;
         }
         std::printf("coif bench animate: %zu frames at %dx%d on %s (medians, ms)\n", r.frames.size(), r.width, r.height, r.renderer.c_str());
-        std::printf("  skinning        %8.1f\n  deformation     %8.1f\n  shadow grid     %8.1f   (motion: %.1f, %.1f %% of the still frame)\n",
+        std::printf("  skinning/sim.   %8.1f\n  deformation     %8.1f\n  shadow grid     %8.1f   (motion: %.1f, %.1f %% of the still frame)\n",
                     m[0], m[1], m[2], motion, 100.0 * motion / still);
         std::printf("  shadow pass     %8.1f\n  lighting        %8.1f\n  shells          %8.1f\n", m[3], m[4], m[5]);
         std::printf("  frame           %8.1f   (%.2fx the still frame; motion with the shadow and lighting passes it reruns: %.1f %%)\n",
