@@ -27,9 +27,9 @@ void add_bench_animate(CLI::App& root) {
         "animate",
         "Per-frame cost of hair that moves: every frame of --animate SPEC (as coif render --animate, nothing written),\n"
         "broken down into skinning (the body's vertices and the clusters' transforms; with the spec's \"dynamics\", the\n"
-        "simulation too), deformation (the clusters'\n"
-        "instances and lighting samples placed and uploaded), shadow grid (the moved strands and the body voxelized and\n"
-        "uploaded), and the renderer's passes that follow: the shadow march, the lighting, the shells. Beside them, the\n"
+        "simulation too), deformation (the clusters' instances and lighting samples placed and uploaded), shadow grid\n"
+        "(the moved strands and the body voxelized and uploaded), and the renderer's passes that follow: the shadow\n"
+        "march, the lighting, the shells. Beside them, the\n"
         "same scene's still frame (drawn twice at rest: the second reuses the shadows and the lighting). Medians over the\n"
         "frames, wall-clock, each pass waited for.");
     o->scene.add_to(cmd);
