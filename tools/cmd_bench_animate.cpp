@@ -29,9 +29,8 @@ void add_bench_animate(CLI::App& root) {
         "broken down into skinning (the body's vertices and the clusters' transforms; with the spec's \"dynamics\", the\n"
         "simulation too), deformation (the clusters' instances and lighting samples placed and uploaded), shadow grid\n"
         "(the moved strands and the body voxelized and uploaded), and the renderer's passes that follow: the shadow\n"
-        "march, the lighting, the shells. Beside them, the\n"
-        "same scene's still frame (drawn twice at rest: the second reuses the shadows and the lighting). Medians over the\n"
-        "frames, wall-clock, each pass waited for.");
+        "march, the lighting, the shells. Beside them, the same scene's still frame (drawn twice at rest: the second\n"
+        "reuses the shadows and the lighting). Medians over the frames, wall-clock, each pass waited for.");
     o->scene.add_to(cmd);
     o->shell.add_to(cmd);
     cmd->add_option("--animate", o->spec, "Animation spec (models/animation.h; coif render --animate)")->required()->check(CLI::ExistingFile);
