@@ -30,7 +30,8 @@ void add_bench_animate(CLI::App& root) {
         "simulation too), deformation (the clusters' instances and lighting samples placed and uploaded), shadow grid\n"
         "(the moved strands and the body voxelized and uploaded), and the renderer's passes that follow: the shadow\n"
         "march, the lighting, the shells. Beside them, the same scene's still frame (drawn twice at rest: the second\n"
-        "reuses the shadows and the lighting). Medians over the frames, wall-clock, each pass waited for.");
+        "reuses the shadows and the lighting). Medians over the frames (--json: also every frame's), wall-clock, each\n"
+        "pass waited for.");
     o->scene.add_to(cmd);
     o->shell.add_to(cmd);
     cmd->add_option("--animate", o->spec, "Animation spec (models/animation.h; coif render --animate)")->required()->check(CLI::ExistingFile);
@@ -50,7 +51,12 @@ void add_bench_animate(CLI::App& root) {
         const double motion = m[0] + m[1] + m[2];
         const double still = r.still.total_ms;
         if (o->json) {
+            nlohmann::json each = nlohmann::json::array();  // every frame's own breakdown
+            for (const coif::cli::AnimationFrame& f : r.frames)
+                each.push_back({{"skinning", f.skinning_ms}, {"deformation", f.deformation_ms}, {"shadow_grid", f.shadow_grid_ms},
+                                {"shadow_pass", f.shadows_ms}, {"lighting", f.lighting_ms}, {"shells", f.shells_ms}, {"frame", f.total_ms}});
             coif::cli::print_json({{"frames", r.frames.size()},
+                                   {"per_frame_milliseconds", each},
                                    {"width", r.width},
                                    {"height", r.height},
                                    {"renderer", r.renderer},

@@ -182,6 +182,15 @@ TEST(Cli, AnimateTurnsTheRatboysHeadAndTheMohawkStaysOnIt) {
     EXPECT_NEAR(w[0].get<double>(), rest[0].get<double>(), 0.2);
     EXPECT_NEAR(w[1].get<double>(), rest[1].get<double>(), 0.2);
     EXPECT_NE(coif::read_file_bytes(dir / "windy_0002.png"), coif::read_file_bytes(dir / "turn_0002.png"));
+    // coif bench animate: every frame's breakdown and the medians, beside the still frame (no figure bounded: a benchmark).
+    r = run_coif("bench animate --style '" + (dir / "mohawk.json").string() + "' --body '" + mesh.string() + "' --animate '" +
+                 (dir / "windy.json").string() + "' --width 64 --height 48 --samples 1 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto b = nlohmann::json::parse(r.out);
+    EXPECT_EQ(b["per_frame_milliseconds"].size(), 3u);
+    for (const char* k : {"skinning", "deformation", "shadow_grid", "shadow_pass", "lighting", "shells", "frame"})
+        EXPECT_GE(b["median_milliseconds"][k].get<double>(), 0.0) << k;
+    EXPECT_GT(b["still_frame_milliseconds"].get<double>(), 0.0);
     fs::remove_all(dir);
 }
 
