@@ -6,6 +6,7 @@
 
 #include "models/core/atomic_file.h"
 #include "models/core/error.h"
+#include "models/core/json_field.h"
 #include "models/core/units.h"
 
 namespace coif {
@@ -48,12 +49,7 @@ struct Reader {
 
 AnimationSpec parse_animation_spec(std::string_view text, const fs::path& file) {
     const Reader rd{file};
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::exception& e) {  // a syntax error, or a number beyond double's range
-        throw Error(file, "JSON", std::string("not valid JSON: ") + e.what());
-    }
+    const json doc = parse_json(text, file);
     if (!doc.is_object()) rd.fail("/", "an animation is a JSON object");
     rd.only(doc, "", {"frames", "fps", "bones", "pivot", "keys", "dynamics"});
     AnimationSpec s;

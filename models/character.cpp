@@ -155,15 +155,10 @@ const BodyFormat* body_format(const fs::path& path) {
 
 }  // namespace
 
-glm::vec3 BodyMesh::bbox_min() const {
-    glm::vec3 m(INFINITY);
-    for (const glm::vec3& p : positions) m = glm::min(m, p);
-    return m;
-}
-glm::vec3 BodyMesh::bbox_max() const {
-    glm::vec3 m(-INFINITY);
-    for (const glm::vec3& p : positions) m = glm::max(m, p);
-    return m;
+std::pair<glm::vec3, glm::vec3> BodyMesh::bounds(const glm::mat3& orientation) const {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& p : positions) lo = glm::min(lo, orientation * p), hi = glm::max(hi, orientation * p);
+    return {lo, hi};
 }
 
 BodyMesh parse_tfxmesh(const std::vector<std::byte>& bytes, const fs::path& path) {
@@ -367,53 +362,33 @@ BodyMesh scalp_from_roots(const std::vector<glm::vec3>& roots, int segments) {
     glm::dvec3 mean(0.0);
     for (const glm::vec3& r : roots) mean += glm::dvec3(r);
     mean /= static_cast<double>(roots.size());
-    double N[4][4] = {}, rhs[4] = {};
+    glm::dmat4 N(0.0);  // the normal equations N x = b
+    glm::dvec4 b(0.0);
     for (const glm::vec3& r : roots) {
         const glm::dvec3 q = glm::dvec3(r) - mean;
-        const double row[4] = {2.0 * q.x, 2.0 * q.y, 2.0 * q.z, 1.0}, y = glm::dot(q, q);
-        for (int i = 0; i < 4; ++i) {
-            rhs[i] += row[i] * y;
-            for (int j = 0; j < 4; ++j) N[i][j] += row[i] * row[j];
-        }
+        const glm::dvec4 row(2.0 * q, 1.0);
+        N += glm::outerProduct(row, row);
+        b += row * glm::dot(q, q);
     }
-    // Gaussian elimination with partial pivoting on the 4 × 4 normal equations.
-    for (int col = 0; col < 4; ++col) {
-        int best = col;
-        for (int r = col + 1; r < 4; ++r)
-            if (std::abs(N[r][col]) > std::abs(N[best][col])) best = r;
-        if (!(std::abs(N[best][col]) > 1e-12)) throw Error::parameter("scalp", "the roots do not fix a sphere (are they on a line or a plane?)");
-        std::swap(N[col], N[best]);
-        std::swap(rhs[col], rhs[best]);
-        for (int r = col + 1; r < 4; ++r) {
-            const double f = N[r][col] / N[col][col];
-            for (int j = col; j < 4; ++j) N[r][j] -= f * N[col][j];
-            rhs[r] -= f * rhs[col];
-        }
-    }
-    double x[4];
-    for (int r = 3; r >= 0; --r) {
-        double v = rhs[r];
-        for (int j = r + 1; j < 4; ++j) v -= N[r][j] * x[j];
-        x[r] = v / N[r][r];
-    }
-    const glm::dvec3 c = mean + glm::dvec3(x[0], x[1], x[2]);
+    const double scale = (N[0][0] + N[1][1] + N[2][2] + N[3][3]) / 4.0;
+    if (!(std::abs(glm::determinant(N)) > 1e-12 * scale * scale * scale * scale))
+        throw Error::parameter("scalp", "the roots do not fix a sphere (are they on a line or a plane?)");
+    const glm::dvec4 x = glm::inverse(N) * b;
+    const glm::dvec3 c = mean + glm::dvec3(x);
     std::vector<double> distance;
     for (const glm::vec3& r : roots) distance.push_back(glm::distance(glm::dvec3(r), c));
     std::nth_element(distance.begin(), distance.begin() + static_cast<std::ptrdiff_t>(distance.size() / 2), distance.end());
     const double radius = distance[distance.size() / 2];
     if (!(radius > 0.0) || !std::isfinite(radius)) throw Error::parameter("scalp", "the roots do not fix a sphere");
-    const glm::dvec3 radii(radius);
-    const glm::dmat3 V(1.0);
-    // The mesh: a UV sphere mapped onto the ellipsoid.
+    // The mesh: a UV sphere.
     BodyMesh m;
     const int nu = std::max(segments, 8), nv = nu / 2;
     for (int j = 0; j <= nv; ++j)
         for (int i = 0; i < nu; ++i) {
             const double th = kPi * j / nv, ph = kTwoPi * i / nu;
             const glm::dvec3 s(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-            const glm::dvec3 local = radii * s;
-            m.positions.push_back(glm::vec3(c + V * local));
-            m.normals.push_back(glm::vec3(glm::normalize(V * (s / radii))));
+            m.positions.push_back(glm::vec3(c + radius * s));
+            m.normals.push_back(glm::vec3(s));
         }
     const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * nu + (i % nu)); };
     for (int j = 0; j < nv; ++j)

@@ -35,6 +35,7 @@
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace coif {
@@ -60,8 +61,8 @@ struct BodyMesh {
     std::size_t renormalised = 0;       // vertices whose weights were renormalised (see above)
     float min_weight_sum = 1.0f;        // the smallest weight sum read
     bool axes_stated = false;           // .tfxmesh: y-up centimetres, the .tfx's frame
-    glm::vec3 bbox_min() const;
-    glm::vec3 bbox_max() const;
+    // The box (min, max) of the positions turned by `orientation`.
+    std::pair<glm::vec3, glm::vec3> bounds(const glm::mat3& orientation = glm::mat3(1.0f)) const;
 };
 
 struct StrandSkinning {

@@ -1,7 +1,5 @@
 #include "online/body_pass.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cstddef>
 #include <vector>
@@ -74,9 +72,7 @@ std::uint32_t BodyPass::draw(const FrameView& view, glm::vec2 jitter, int width,
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     program_.use();
-    // The shells' sub-pixel shift (online/shell_passes.cpp ShellsPass::draw): x right, y down, in pixels.
-    const glm::vec3 shift(2.0f * jitter.x / width, -2.0f * jitter.y / height, 0.0f);
-    const glm::mat4 vp = glm::translate(glm::mat4(1.0f), shift) * view.projection * view.view;
+    const glm::mat4 vp = pixel_shift(jitter, width, height) * view.projection * view.view;  // as the shells are shifted
     glUniformMatrix4fv(program_.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
     glUniform3fv(program_.uniform("u_albedo"), 1, &kBodyAlbedo.x);
     glUniform3fv(program_.uniform("u_eye"), 1, &view.eye.x);

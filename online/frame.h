@@ -3,6 +3,7 @@
 // is online/hair_renderer.h). GL-free: GL names cross as plain integers.
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "models/core/camera.h"
 
@@ -20,6 +21,12 @@ struct FrameView {
         return {view, projection, glm::vec3(glm::inverse(view)[3])};
     }
 };
+
+// A sub-pixel shift of a width × height image by `jitter` pixels (x right, y down), as the clip-space translation put
+// before a projection: render()'s supersampled frames, the viewer's refinement, and the body drawn under them.
+inline glm::mat4 pixel_shift(glm::vec2 jitter, int width, int height) {
+    return glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * jitter.x / width, -2.0f * jitter.y / height, 0.0f));
+}
 
 // Which convention the host's depth buffer follows (online/shells' shader variant SHELL_SCENE_DEPTH).
 enum class DepthTest : int {

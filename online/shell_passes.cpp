@@ -296,8 +296,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     const Program& prog = floor_only ? floor_ : shading_program(exact, s, gpu.lighting_rows, L, depth);
     prog.use();
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
-    const glm::vec3 shift(2.0f * d.jitter.x / width, -2.0f * d.jitter.y / height, 0.0f);
-    const glm::mat4 vp = glm::translate(glm::mat4(1.0f), shift) * view.projection * view.view;
+    const glm::mat4 vp = pixel_shift(d.jitter, width, height) * view.projection * view.view;
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
     if (!floor_only) {
         glBindTextureUnit(0, gpu.atlas.id());

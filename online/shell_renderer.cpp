@@ -24,6 +24,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The largest entry of RᵀR − I: how far R is from a rotation's columns (orthogonal, of length 1).
+float orthonormality_error(const glm::mat3& R) {
+    const glm::mat3 E = glm::transpose(R) * R - glm::mat3(1.0f);
+    float off = 0.0f;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) off = std::max(off, std::abs(E[c][r]));
+    return off;
+}
+// Whether M's last row is (0, 0, 0, 1).
+bool affine(const glm::mat4& M) { return M[0][3] == 0.0f && M[1][3] == 0.0f && M[2][3] == 0.0f && M[3][3] == 1.0f; }
+
 // How far a skipped lighting sample's axis may lie from the interpolation between the lit ones (lighting_step_within):
 // 4°, about half of 000's β_R of 7.5°, the narrowest lobe. The default style's 90th percentile is 2.4° at step 2 and 6.8°
 // at step 4; Curly_100's fitted clusters are 5.6° at step 2 (docs/renderer.md, "Quality presets").
@@ -66,7 +77,7 @@ struct ShellRenderer::Impl {
     std::optional<BodyMesh> body_mesh;      // and its mesh, voxelized again into each new shadow grid
     glm::mat3 body_orientation{1.0f};
     DensityGrid grid;                       // the hair's own shadow grid (set_body extends a copy of it)
-    std::vector<ShellInstance> cooked_instances;  // the placements as cooked (set_cluster_transforms moves copies)
+    std::vector<ShellInstance> cooked_instances;  // the placements as cooked, kept by the first set_cluster_transforms
     std::vector<LightingSample> cooked_samples;
 
     void invalidate_shadows() {
@@ -74,21 +85,20 @@ struct ShellRenderer::Impl {
         lighting_key.valid = false;
         for (InstanceLights& il : instances) il.shadows_valid = false, il.lighting_key.valid = false;
     }
-    // The hair's grid, grown to hold the body beside it (extend_grid), and the body's voxels on it; uploaded.
-    void upload_grid() {
+    // The hair's grid, grown to hold the body beside it (extend_grid), and the body's voxels on it; uploaded. Returns
+    // the uploaded grid's dimensions.
+    glm::ivec3 upload_grid() {
         DensityGrid grown;
         if (body_mesh) {
-            glm::vec3 lo(INFINITY), hi(-INFINITY);
-            for (const glm::vec3& p : body_mesh->positions) lo = glm::min(lo, body_orientation * p), hi = glm::max(hi, body_orientation * p);
+            const auto [lo, hi] = body_mesh->bounds(body_orientation);
             grown = extend_grid(grid, lo, hi);
         }
         const DensityGrid& g = body_mesh ? grown : grid;
         gpu->set_grid(g);
         gpu->set_body(body_mesh ? voxelize_body(*body_mesh, body_orientation, g) : std::vector<std::uint8_t>{}, g.dims);
-        grid_dims = g.dims;
         invalidate_shadows();
+        return g.dims;
     }
-    glm::ivec3 grid_dims{0};
 
     int lighting_step(int wanted) {
         auto it = lighting_steps.find(wanted);
@@ -134,8 +144,6 @@ ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>
     glFinish();  // the upload's copies done, so that upload_seconds holds them
     stats_.upload_seconds = std::chrono::duration<double>(Clock::now() - upload).count();
     m.shells = std::move(cooked.shells);
-    m.cooked_instances = m.shells.instances;
-    m.cooked_samples = m.shells.samples;
 
     const PreparedShells& p = m.shells;
     stats_.clusters = p.clusters();
@@ -180,9 +188,7 @@ void ShellRenderer::set_body(const BodyMesh* body, const glm::mat3& orientation,
     if (body) m.body_mesh = *body;
     else m.body_mesh.reset();
     m.body_orientation = orientation;
-    if (!regrid) return;
-    m.upload_grid();
-    stats_.grid_x = m.grid_dims.x, stats_.grid_y = m.grid_dims.y, stats_.grid_z = m.grid_dims.z;
+    if (regrid) upload_grid();
 }
 
 bool ShellRenderer::has_body() const { return impl_->body != nullptr; }
@@ -199,9 +205,13 @@ void ShellRenderer::set_shadow_grid(DensityGrid grid) {
     if (glm::any(glm::lessThan(grid.dims, glm::ivec3(1))) || !(grid.voxel > 0.0f))
         throw Error::parameter("shadow grid", "it is empty");
     m.grid = std::move(grid);
-    m.upload_grid();
-    stats_.grid_x = m.grid_dims.x, stats_.grid_y = m.grid_dims.y, stats_.grid_z = m.grid_dims.z;
-    stats_.voxel = m.grid.voxel;
+    upload_grid();
+}
+
+void ShellRenderer::upload_grid() {
+    const glm::ivec3 dims = impl_->upload_grid();
+    stats_.grid_x = dims.x, stats_.grid_y = dims.y, stats_.grid_z = dims.z;
+    stats_.voxel = impl_->grid.voxel;
 }
 
 void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms) {
@@ -212,14 +222,14 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
                                                          std::to_string(p.clusters()) + " clusters");
     for (std::size_t c = 0; c < transforms.size(); ++c) {
         const glm::mat3 R(transforms[c]);
-        const glm::mat3 E = glm::transpose(R) * R - glm::mat3(1.0f);
-        float off = 0.0f;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) off = std::max(off, std::abs(E[i][j]));
         const glm::vec3 t(transforms[c][3]);
-        if (!(off <= 1e-3f) || !(glm::determinant(R) > 0.0f) || !std::isfinite(t.x + t.y + t.z) || transforms[c][0][3] != 0.0f ||
-            transforms[c][1][3] != 0.0f || transforms[c][2][3] != 0.0f || transforms[c][3][3] != 1.0f)
+        if (!(orthonormality_error(R) <= 1e-3f) || !(glm::determinant(R) > 0.0f) || !std::isfinite(t.x + t.y + t.z) ||
+            !affine(transforms[c]))
             throw Error::parameter("cluster transform " + std::to_string(c), "must be a rotation and a translation");
+    }
+    if (m.cooked_instances.empty()) {  // the first motion: what later ones start from
+        m.cooked_instances = p.instances;
+        m.cooked_samples = p.samples;
     }
     for (std::size_t i = 0; i < p.instances.size(); ++i) {
         const ShellInstance& rest = m.cooked_instances[i];
@@ -279,12 +289,8 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
         const glm::mat3 A(M);
         const float scale = std::cbrt(glm::determinant(A));
         const glm::mat3 R = A / scale;
-        const glm::mat3 E = glm::transpose(R) * R - glm::mat3(1.0f);
-        float off = 0.0f;
-        for (int c = 0; c < 3; ++c)
-            for (int r = 0; r < 3; ++r) off = std::max(off, std::abs(E[c][r]));
-        if (!(scale > 0.0f) || !std::isfinite(scale) || off > 1e-3f || M[0][3] != 0.0f || M[1][3] != 0.0f || M[2][3] != 0.0f ||
-            M[3][3] != 1.0f)
+        const float off = orthonormality_error(R);
+        if (!(scale > 0.0f) || !std::isfinite(scale) || off > 1e-3f || !affine(M))
             throw Error::parameter("instance " + std::to_string(i),
                                    "the transform must be a rotation, a translation and a uniform positive scale");
         // The hair is drawn in its own space: the view times the transform, the eye and the lights turned into it.
@@ -473,7 +479,7 @@ Image ShellRenderer::render_tiles(const Camera& camera, const ShellSettings& set
     Image image(camera.width, camera.height, 4, 0.0f);
     const glm::mat4 view = camera.view(), projection = camera.projection();
     // The whole frame's sub-pixel shift, as ShellsPass applies it, in the whole frame's normalised device coordinates.
-    const glm::vec3 shift(2.0f * m.jitter.x / camera.width, -2.0f * m.jitter.y / camera.height, 0.0f);
+    const glm::mat4 shift = pixel_shift(m.jitter, camera.width, camera.height);
     int tiles = 0;
     // Draws the part [x0, x1) × [y0, y1) of the frame (pixels, rows from the top) through a projection that widens it to
     // the whole of normalised device space; true when its fragments fitted.
@@ -487,7 +493,7 @@ Image ShellRenderer::render_tiles(const Camera& camera, const ShellSettings& set
         RenderTarget target(w, h, GL_RGBA16F, 1);
         target.bind();
         for (int attempt = 0; attempt < 2; ++attempt) {  // the storage grows to the tile's own count, up to its limit
-            draw_view(FrameView::of(view, widen * glm::translate(glm::mat4(1.0f), shift) * projection), w, h,
+            draw_view(FrameView::of(view, widen * shift * projection), w, h,
                       glm::vec2(0.0f), settings, false);
             const FragmentListStats& st = lists.stats();
             if (st.dropped == 0) break;

@@ -188,6 +188,7 @@ private:
     // draw()'s frame of any view: cleared to the background, drawn, finished (width × height at the origin).
     void draw_view(const FrameView& view, int width, int height, glm::vec2 jitter, const ShellSettings& s, bool floor);
     Image render_tiles(const Camera& camera, const ShellSettings& settings);  // render()'s frame beyond the storage
+    void upload_grid();  // the shadow grid with the body in it (set_body, set_shadow_grid), and its figures in stats_
     struct Impl;
     std::unique_ptr<Impl> impl_;
     ShellStats stats_;

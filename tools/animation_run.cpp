@@ -31,9 +31,8 @@ glm::dvec2 root_offsets(const std::vector<glm::vec3>& roots, const BodyMesh& bod
 }
 }  // namespace
 
-AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& shell, const std::string& spec_path,
+AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& shell, const AnimationSpec& spec,
                               const std::function<void(int, const Image&)>& frame_out) {
-    const AnimationSpec spec = read_animation_spec(spec_path);
     SceneInputs inputs = shell.read_inputs(scene);
     if (inputs.cooked)
         throw Error::parameter("option --animate", "needs a style (its strands and bone weights), not a baked .coif asset");

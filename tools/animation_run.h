@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "models/animation.h"
 #include "models/core/image.h"
 #include "tools/scene_options.h"
 
@@ -28,10 +29,10 @@ struct AnimationResult {
     glm::dvec2 rest_root_offset{0.0}, animated_root_offset{0.0};
 };
 
-// Reads and checks everything first (the spec, the style and its skinning, the --body: a wrong input writes nothing),
+// Reads and checks everything first (the style and its skinning, the --body, the spec's bones: a wrong input writes nothing),
 // then renders every frame, handing each image to `frame_out` (may be empty), and the rest frame's cost. Throws
 // coif::Error.
-AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& shell, const std::string& spec_path,
+AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& shell, const AnimationSpec& spec,
                               const std::function<void(int, const Image&)>& frame_out);
 
 // The frame images' file names beside `output` (out.png → out_0000.png …) and the contact sheet's (out_sheet.png).

@@ -40,7 +40,7 @@ void add_bench_animate(CLI::App& root) {
                              "  coif bench animate --style mohawk.json --body ../shared/data/Ratboy_body.tfxmesh \\\n"
                              "      --animate docs/examples/ratboy_head_turn.json --samples 1");
     cmd->callback([o] {
-        const coif::cli::AnimationResult r = coif::cli::run_animation(o->scene, o->shell, o->spec, {});
+        const coif::cli::AnimationResult r = coif::cli::run_animation(o->scene, o->shell, coif::read_animation_spec(o->spec), {});
         std::vector<double> col[7];
         for (const coif::cli::AnimationFrame& f : r.frames) {
             const double v[7] = {f.skinning_ms, f.deformation_ms, f.shadow_grid_ms, f.shadows_ms, f.lighting_ms, f.shells_ms, f.total_ms};

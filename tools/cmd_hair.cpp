@@ -62,7 +62,7 @@ nlohmann::json body_json(const fs::path& path, const coif::BodyMesh& m) {
             {"bones", m.bones.size()},
             {"vertices", m.positions.size()},
             {"triangles", m.triangles.size()},
-            {"bbox", {{"min", vec_json(m.bbox_min())}, {"max", vec_json(m.bbox_max())}}},
+            {"bbox", {{"min", vec_json(m.bounds().first)}, {"max", vec_json(m.bounds().second)}}},
             {"weights_renormalised", m.renormalised},
             {"min_weight_sum", m.min_weight_sum},
             {"units", m.axes_stated ? "centimetres, y-up (read from metres)" : "as stored (the format states none)"}};
@@ -97,7 +97,7 @@ nlohmann::json skinning_json(const fs::path& path, const coif::StrandSkinning& s
 }
 
 void print_body(const fs::path& path, const coif::BodyMesh& m) {
-    const glm::vec3 lo = m.bbox_min(), hi = m.bbox_max();
+    const auto [lo, hi] = m.bounds();
     std::printf("%s  (%s)\n", path.string().c_str(), coif::body_format_name(path).c_str());
     std::printf("  bones               %zu\n  vertices            %zu\n  triangles           %zu\n", m.bones.size(), m.positions.size(),
                 m.triangles.size());

@@ -109,10 +109,10 @@ void add_render(CLI::App& root) {
                 throw coif::Error::parameter("option --animate", "animates the shells; --strands, --preview-strands and --aovs do not apply");
             std::vector<coif::Image> thumbs;
             int shrink_by = 1;
-            const int frames = coif::read_animation_spec(o->animate).frames;
+            const coif::AnimationSpec spec = coif::read_animation_spec(o->animate);
             wo.description = "coif render --animate " + o->animate + "; style " + o->scene.style;
-            const coif::cli::AnimationResult r = coif::cli::run_animation(o->scene, o->shell, o->animate, [&](int f, const coif::Image& image) {
-                if (f == 0) shrink_by = coif::cli::sheet_factor(frames, image.width);
+            const coif::cli::AnimationResult r = coif::cli::run_animation(o->scene, o->shell, spec, [&](int f, const coif::Image& image) {
+                if (f == 0) shrink_by = coif::cli::sheet_factor(spec.frames, image.width);
                 const std::string path = coif::cli::animation_frame_path(o->output, f);
                 coif::write_image(path, image, wo);
                 thumbs.push_back(coif::cli::shrink(image, shrink_by));

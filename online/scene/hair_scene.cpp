@@ -77,10 +77,9 @@ HairScene::HairScene(HairSceneDesc desc)
         const glm::mat3 orientation = desc.cooked ? glm::mat3(1.0f) : style_orientation(style) * style_source_rotation(style);
         renderer->set_body(&*desc.body, orientation);
         if (!desc.framing.box) {  // frame the character: the hair's box and the body's
-            for (const glm::vec3& p : desc.body->positions) {
-                v.frame_min = glm::min(v.frame_min, orientation * p);
-                v.frame_max = glm::max(v.frame_max, orientation * p);
-            }
+            const auto [lo, hi] = desc.body->bounds(orientation);
+            v.frame_min = glm::min(v.frame_min, lo);
+            v.frame_max = glm::max(v.frame_max, hi);
             v.camera = desc.framing.view.around(v.frame_min, v.frame_max);
             refuse_eye_inside(v.camera, *renderer);
         }

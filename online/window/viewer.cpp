@@ -567,8 +567,7 @@ private:
     void draw_picture(glm::vec2 jitter, int width, int height, const Framebuffer& fbo) {
         const Camera cam = camera_at(width, height);
         // The shift as coif render's supersampling applies it (online/shell_passes.cpp): in the projection.
-        const glm::vec3 shift(2.0f * jitter.x / width, -2.0f * jitter.y / height, 0.0f);
-        const glm::mat4 projection = glm::translate(glm::mat4(1.0f), shift) * cam.projection();
+        const glm::mat4 projection = pixel_shift(jitter, width, height) * cam.projection();
         ShellRenderer& r = *scene_.renderer;
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
         glViewport(0, 0, width, height);

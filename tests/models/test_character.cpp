@@ -27,7 +27,7 @@ TEST(Character, RatboyBodyMatchesProvenanceFiguresInCentimetres) {
     EXPECT_EQ(m.triangles.size(), 25814u);
     ASSERT_EQ(m.influences.size(), m.positions.size());
     EXPECT_EQ(m.bones[5], "frenchHornMonster_head_JNT");
-    const glm::vec3 lo = m.bbox_min(), hi = m.bbox_max();
+    const auto [lo, hi] = m.bounds();
     EXPECT_NEAR(lo.x, -24.8, 0.1);
     EXPECT_NEAR(lo.y, 0.01, 0.01);
     EXPECT_NEAR(lo.z, -10.8, 0.1);
