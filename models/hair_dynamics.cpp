@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "models/core/error.h"
+#include "models/skinning.h"
 
 namespace coif {
 namespace {
@@ -171,20 +172,6 @@ void ClusterDynamics::step(const std::vector<glm::mat4>& frames, const BodyColli
         }
     }
     ++steps_;
-}
-
-glm::mat3 extract_rotation(const glm::mat3& A, const glm::mat3& guess, int iterations) {
-    glm::quat q = glm::quat_cast(guess);
-    for (int k = 0; k < iterations; ++k) {
-        const glm::mat3 R = glm::mat3_cast(q);
-        const glm::vec3 num = glm::cross(R[0], A[0]) + glm::cross(R[1], A[1]) + glm::cross(R[2], A[2]);
-        const float den = std::abs(glm::dot(R[0], A[0]) + glm::dot(R[1], A[1]) + glm::dot(R[2], A[2])) + 1e-9f;
-        const glm::vec3 omega = num / den;
-        const float w = glm::length(omega);
-        if (w < 1e-9f) break;
-        q = glm::normalize(glm::angleAxis(w, omega / w) * q);
-    }
-    return glm::mat3_cast(q);
 }
 
 glm::mat4 ClusterDynamics::cluster_transform(std::size_t c) const {

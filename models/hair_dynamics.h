@@ -98,8 +98,4 @@ private:
     int steps_ = 0;
 };
 
-// The rotation part of a 3×3 matrix A (Müller et al. 2016, "A robust method to extract the rotational part of
-// deformations"), iterated from `guess` (a rotation).
-glm::mat3 extract_rotation(const glm::mat3& A, const glm::mat3& guess, int iterations = 20);
-
 }  // namespace coif

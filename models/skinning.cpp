@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <numeric>
 
 #include "models/core/error.h"
@@ -52,6 +53,12 @@ glm::mat4 BonePose::matrix(std::size_t bone) const {
     return m;
 }
 
+std::vector<glm::mat4> BonePose::matrices() const {
+    std::vector<glm::mat4> m(transforms.size());
+    for (std::size_t b = 0; b < m.size(); ++b) m[b] = matrix(b);
+    return m;
+}
+
 std::vector<glm::vec3> bone_pivots(const BodyMesh& mesh) {
     const std::size_t B = mesh.bones.size();
     std::vector<glm::dvec3> main_sum(B, glm::dvec3(0.0)), weighted(B, glm::dvec3(0.0));
@@ -85,14 +92,12 @@ BonePose rest_pose(const BodyMesh& mesh) {
     return p;
 }
 
-void skin_body(const BodyMesh& rest, const BonePose& pose, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+void skin_body(const BodyMesh& rest, std::span<const glm::mat4> m, std::vector<glm::vec3>& positions,
+               std::vector<glm::vec3>& normals) {
     if (rest.influences.size() != rest.positions.size() || rest.bones.empty())
         throw Error::parameter("body", "the mesh has no bone weights to skin it with");
-    if (pose.transforms.size() != rest.bones.size() || pose.pivots.size() != rest.bones.size())
-        throw Error::parameter("pose", "it has " + std::to_string(pose.transforms.size()) + " bones, the body " +
-                                           std::to_string(rest.bones.size()));
-    std::vector<glm::mat4> m(rest.bones.size());
-    for (std::size_t b = 0; b < m.size(); ++b) m[b] = pose.matrix(b);
+    if (m.size() != rest.bones.size())
+        throw Error::parameter("pose", "it has " + std::to_string(m.size()) + " bones, the body " + std::to_string(rest.bones.size()));
     positions.resize(rest.positions.size());
     normals.resize(rest.normals.size());
     for (std::size_t i = 0; i < rest.positions.size(); ++i) {
@@ -105,21 +110,51 @@ void skin_body(const BodyMesh& rest, const BonePose& pose, std::vector<glm::vec3
     }
 }
 
-glm::mat4 cluster_transform(const BoneInfluence& influence, std::span<const int> bone_of, const BonePose& pose, glm::vec3 root) {
+void skin_body(const BodyMesh& rest, const BonePose& pose, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+    if (pose.transforms.size() != rest.bones.size() || pose.pivots.size() != rest.bones.size())
+        throw Error::parameter("pose", "it has " + std::to_string(pose.transforms.size()) + " bones, the body " +
+                                           std::to_string(rest.bones.size()));
+    skin_body(rest, pose.matrices(), positions, normals);
+}
+
+std::vector<glm::mat4> map_bone_matrices(std::span<const glm::mat4> from_matrices, const std::vector<std::string>& from,
+                                         const std::vector<std::string>& to) {
+    if (from_matrices.size() != from.size())
+        throw Error::parameter("bones", std::to_string(from_matrices.size()) + " matrices for " + std::to_string(from.size()) + " bones");
+    const std::vector<int> of = bone_map(to, from);
+    std::vector<glm::mat4> out(to.size(), glm::mat4(1.0f));
+    for (std::size_t b = 0; b < to.size(); ++b)
+        if (of[b] >= 0) out[b] = from_matrices[static_cast<std::size_t>(of[b])];
+    return out;
+}
+
+glm::mat4 cluster_transform(const BoneInfluence& influence, std::span<const glm::mat4> bones, glm::vec3 root) {
     glm::mat4 a(0.0f);
     for (int k = 0; k < 4; ++k) {
         const int b = influence.bone[k];
-        const int mapped = b >= 0 && static_cast<std::size_t>(b) < bone_of.size() ? bone_of[static_cast<std::size_t>(b)] : -1;
-        a += influence.weight[k] * (mapped >= 0 ? pose.matrix(static_cast<std::size_t>(mapped)) : glm::mat4(1.0f));
+        if (b < 0 || static_cast<std::size_t>(b) >= bones.size())
+            throw Error::parameter("skinning", "bone " + std::to_string(b) + " of " + std::to_string(bones.size()));
+        a += influence.weight[k] * bones[static_cast<std::size_t>(b)];
     }
-    // The rotation of A's linear part: its Gram–Schmidt frame (x, then y ⟂ x, z = x × y).
-    const glm::mat3 l(a);
-    const glm::vec3 x = glm::normalize(l[0]);
-    const glm::vec3 y = glm::normalize(l[1] - glm::dot(l[1], x) * x);
-    const glm::mat3 R(x, y, glm::cross(x, y));
+    // The rotation of A's linear part, from the identity: A's own when the bones' rotations agree.
+    const glm::mat3 R = extract_rotation(glm::mat3(a), glm::mat3(1.0f), 50);
     glm::mat4 out(R);
     out[3] = glm::vec4(glm::vec3(a * glm::vec4(root, 1.0f)) - R * root, 1.0f);
     return out;
+}
+
+glm::mat3 extract_rotation(const glm::mat3& A, const glm::mat3& guess, int iterations) {
+    glm::quat q = glm::quat_cast(guess);
+    for (int k = 0; k < iterations; ++k) {
+        const glm::mat3 R = glm::mat3_cast(q);
+        const glm::vec3 num = glm::cross(R[0], A[0]) + glm::cross(R[1], A[1]) + glm::cross(R[2], A[2]);
+        const float den = std::abs(glm::dot(R[0], A[0]) + glm::dot(R[1], A[1]) + glm::dot(R[2], A[2])) + 1e-9f;
+        const glm::vec3 omega = num / den;
+        const float w = glm::length(omega);
+        if (w < 1e-9f) break;
+        q = glm::normalize(glm::angleAxis(w, omega / w) * q);
+    }
+    return glm::mat3_cast(q);
 }
 
 }  // namespace coif

@@ -8,9 +8,11 @@
 // A body vertex moves by the linear blend Σ_k w_k M_{b_k} of its four bones (skin_body). A cluster of the hair moves as
 // one rigid body (its shells are similarity-placed meshes): the blend A = Σ_k w_k M_{b_k} of its four bones, the weights
 // the mean of its strands' .tfxbone weights (cluster_influences, written into the style by `coif style import
-// --skinning`), made rigid by taking the Gram–Schmidt frame of A's linear part as its rotation (A's own rotation when the
-// bones' rotations agree) and the translation that puts the cluster's root where A puts it (cluster_transform): roots
-// stay where linear blend skinning puts the skin under them.
+// --skinning`), made rigid by taking the rotation part of A's linear part as its rotation (extract_rotation; A's own
+// rotation when the bones' rotations agree) and the translation that puts the cluster's root where A puts it
+// (cluster_transform): roots stay where linear blend skinning puts the skin under them.
+//   The functions that pose take the bones as matrices, M_b per bone (an engine's skinning matrices: each bone's
+// rest-to-posed transform, in the body's frame): BonePose::matrices() makes them from a pose about pivots.
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <span>
@@ -42,6 +44,7 @@ struct BonePose {
     std::vector<BoneTransform> transforms;  // per bone
     // M_b as a matrix: x ↦ pivot + R (x − pivot) + t.
     glm::mat4 matrix(std::size_t bone) const;
+    std::vector<glm::mat4> matrices() const;  // every bone's
 };
 
 // The centroid of the vertices whose largest weight is on each bone of `mesh` (mesh.bones order); a bone that is no
@@ -50,12 +53,23 @@ std::vector<glm::vec3> bone_pivots(const BodyMesh& mesh);
 // The rest pose of `mesh`'s skeleton: its pivots, every bone at rest.
 BonePose rest_pose(const BodyMesh& mesh);
 
-// The body's positions and normals under `pose` (linear blend skinning); `pose` is over mesh.bones. Throws
-// coif::Error::parameter if the mesh is not skinned or the pose's bone count differs.
+// The body's positions and normals under the bones' matrices `bones` (over mesh.bones; linear blend skinning). Throws
+// coif::Error::parameter if the mesh is not skinned or the bone count differs.
+void skin_body(const BodyMesh& rest, std::span<const glm::mat4> bones, std::vector<glm::vec3>& positions,
+               std::vector<glm::vec3>& normals);
 void skin_body(const BodyMesh& rest, const BonePose& pose, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
 
-// A cluster's rigid transform under `pose` (see the header): `bone_of[k]` maps the influence's bones into the pose's
-// (bone_map of the style's bone names to the mesh's; −1: not in the mesh, at rest); `root` the cluster's root.
-glm::mat4 cluster_transform(const BoneInfluence& influence, std::span<const int> bone_of, const BonePose& pose, glm::vec3 root);
+// Matrices over the bones `to` from matrices over the bones `from`, matched by name (bone_map); a bone of `to` that
+// `from` lacks stays at rest (identity).
+std::vector<glm::mat4> map_bone_matrices(std::span<const glm::mat4> from_matrices, const std::vector<std::string>& from,
+                                         const std::vector<std::string>& to);
+
+// A cluster's rigid transform (see the header) under the bones' matrices `bones`, indexed as the influence's bones are;
+// `root` the cluster's root. Throws coif::Error::parameter for an influence's bone outside `bones`.
+glm::mat4 cluster_transform(const BoneInfluence& influence, std::span<const glm::mat4> bones, glm::vec3 root);
+
+// The rotation part of a 3×3 matrix A (Müller et al. 2016, "A robust method to extract the rotational part of
+// deformations"), iterated from `guess` (a rotation): the rotation closest to A, whatever the order of its columns.
+glm::mat3 extract_rotation(const glm::mat3& A, const glm::mat3& guess, int iterations = 20);
 
 }  // namespace coif

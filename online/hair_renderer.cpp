@@ -1,5 +1,8 @@
 #include "online/hair_renderer.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "online/gl.h"
 #include "online/shell_renderer.h"
 
@@ -66,8 +69,48 @@ private:
 
 HairRenderer::HairRenderer(const std::filesystem::path& asset) : HairRenderer(read_hair_asset(asset)) {}
 
-HairRenderer::HairRenderer(CookedShells cooked) : defaults_(cooked.defaults) {
+HairRenderer::HairRenderer(CookedShells cooked)
+    : defaults_(cooked.defaults), skinning_(cooked.skinning), roots_(cooked.roots), body_orientation_(cooked.body_orientation) {
+    if (skinning_ && (skinning_->clusters.size() != cooked.shells.clusters() || roots_.size() != cooked.shells.clusters()))
+        throw Error(cooked.source, "skinning", "one bone influence and root per cluster expected");
     renderer_ = std::make_unique<gl::ShellRenderer>(std::move(cooked));
+}
+
+const std::vector<std::string>& HairRenderer::bones() const {
+    static const std::vector<std::string> none;
+    return skinning_ ? skinning_->bones : none;
+}
+
+void HairRenderer::set_body(const BodyMesh* body) {
+    if (!body) body_.reset();
+    else {
+        body_ = *body;
+        for (std::size_t i = 0; i < body_->positions.size(); ++i) {
+            body_->positions[i] = body_orientation_ * body->positions[i];
+            body_->normals[i] = glm::normalize(body_orientation_ * body->normals[i]);
+        }
+    }
+    const SavedState saved;  // the body's buffers and programs are made here
+    apply_pose(std::vector<glm::mat4>(pose_));
+}
+
+void HairRenderer::apply_pose(std::span<const glm::mat4> bones) {
+    std::vector<glm::mat4> m(bones.begin(), bones.end());
+    if (m.empty() && skinning_) m.assign(skinning_->bones.size(), glm::mat4(1.0f));
+    if (body_) {
+        posed_ = *body_;
+        if (skinning_ && !body_->bones.empty() && body_->influences.size() == body_->positions.size())
+            skin_body(*body_, map_bone_matrices(m, skinning_->bones, body_->bones), posed_.positions, posed_.normals);
+    }
+    if (!skinning_) {  // the body alone, voxelized into the cooked grid
+        renderer_->set_body(body_ ? &posed_ : nullptr, glm::mat3(1.0f), true);
+        return;
+    }
+    renderer_->set_body(body_ ? &posed_ : nullptr, glm::mat3(1.0f), false);  // voxelized into the grid made next
+    std::vector<glm::mat4> transforms(roots_.size());
+    for (std::size_t c = 0; c < transforms.size(); ++c) transforms[c] = cluster_transform(skinning_->clusters[c], m, roots_[c]);
+    renderer_->set_cluster_transforms(transforms);
+    pose_.assign(bones.begin(), bones.end());
 }
 
 HairRenderer::~HairRenderer() = default;
@@ -79,7 +122,20 @@ void HairRenderer::draw(const FrameInputs& f) {
     if (f.viewport.z < 1 || f.viewport.w < 1) throw Error::parameter("frame viewport", "must have a positive width and height");
     if (f.depth_texture != 0 && f.depth_test == DepthTest::none)
         throw Error::parameter("frame depth_test", "a depth texture needs a convention (less_equal or greater_equal)");
+    if (!f.bones.empty()) {
+        if (!skinning_)
+            throw Error::parameter("frame bones", "the asset has no bone weights (bake a style imported with --skinning)");
+        if (f.bones.size() != skinning_->bones.size())
+            throw Error::parameter("frame bones", std::to_string(f.bones.size()) + " matrices for the asset's " +
+                                                      std::to_string(skinning_->bones.size()) + " bones");
+        for (std::size_t b = 0; b < f.bones.size(); ++b)
+            for (int col = 0; col < 4; ++col)
+                for (int row = 0; row < 4; ++row)
+                    if (!std::isfinite(f.bones[b][col][row]))
+                        throw Error::parameter("frame bones " + std::to_string(b), "not finite");
+    }
     const SavedState saved;
+    if (!std::equal(f.bones.begin(), f.bones.end(), pose_.begin(), pose_.end())) apply_pose(f.bones);
     // The passes draw nothing the host's masks or tests would hide from them.
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_RASTERIZER_DISCARD);

@@ -79,6 +79,8 @@ struct ShellRenderer::Impl {
     DensityGrid grid;                       // the hair's own shadow grid (set_body extends a copy of it)
     std::vector<ShellInstance> cooked_instances;  // the placements as cooked, kept by the first set_cluster_transforms
     std::vector<LightingSample> cooked_samples;
+    Strands shadow_source, moved_strands;  // the grid's strands as cooked, and as set_cluster_transforms moved them
+    std::vector<std::uint32_t> shadow_strand_cluster;
 
     void invalidate_shadows() {
         shadows_valid = false;
@@ -158,6 +160,11 @@ ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>
     stats_.re_norm = atlas.re_norm;
     stats_.shadow_strands = cooked.shadow_strands;
     m.grid = std::move(cooked.grid);  // kept: set_body grows a copy of it
+    if (cooked.shadow_strand_cluster.size() + 1 == cooked.shadow_source.offsets.size() && !cooked.shadow_source.points.empty()) {
+        m.shadow_source = std::move(cooked.shadow_source);
+        m.shadow_strand_cluster = std::move(cooked.shadow_strand_cluster);
+        m.moved_strands = m.shadow_source;
+    }
     stats_.grid_x = m.grid.dims.x;
     stats_.grid_y = m.grid.dims.y;
     stats_.grid_z = m.grid.dims.z;
@@ -215,6 +222,7 @@ void ShellRenderer::upload_grid() {
 }
 
 void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms) {
+    const auto start = Clock::now();
     Impl& m = *impl_;
     PreparedShells& p = m.shells;
     if (transforms.size() != p.clusters())
@@ -250,6 +258,20 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
     }
     m.gpu->set_placement(p.instances, p.samples);
     m.invalidate_shadows();
+    move_timings_.placement_ms = wall_ms_since(start);
+    move_timings_.shadow_grid_ms = 0.0;
+    if (m.shadow_source.points.empty()) return;
+    // The grid's strands moved with their clusters and voxelized again, with the body (set_body) in it.
+    const auto regrid = Clock::now();
+    const Strands& from = m.shadow_source;
+    for (std::size_t i = 0; i < m.shadow_strand_cluster.size(); ++i) {
+        const glm::mat4& T = transforms[m.shadow_strand_cluster[i]];
+        for (std::uint32_t k = from.offsets[i]; k < from.offsets[i + 1]; ++k)
+            m.moved_strands.points[k] = glm::vec3(T * glm::vec4(from.points[k], 1.0f));
+    }
+    m.grid = voxelize_strands(m.moved_strands, glm::mat3(1.0f), kShadowGridSize);
+    upload_grid();
+    move_timings_.shadow_grid_ms = wall_ms_since(regrid);
 }
 
 void ShellRenderer::draw(const Camera& camera, const ShellSettings& settings, bool floor_only) {

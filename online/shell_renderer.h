@@ -117,13 +117,19 @@ public:
     // themselves.
     std::uint32_t draw_body(const FrameView& view, int width, int height, std::span<const SrbfLight> lights);
     bool has_body() const;
-    // Moves every cluster rigidly (motion: online/scene/hair_motion.h): transforms[c] takes cluster c from where it was
-    // cooked to where it is now, in the shells' space (a rotation and a translation). The instances and lighting samples
-    // are placed anew from their cooked copies, and the shadows and the lighting pass follow on the next draw. The SATF
-    // look-ups stay: a cluster that moves rigidly keeps its density. The shadow grid does not move: give the moved
-    // hair's with set_shadow_grid. Throws coif::Error::parameter for a count other than the clusters' or a transform that
-    // is not rigid.
+    // Moves every cluster rigidly (motion: online/scene/hair_motion.h, online/hair_renderer.h's bone poses): transforms[c]
+    // takes cluster c from where it was cooked to where it is now, in the shells' space (a rotation and a translation).
+    // The instances and lighting samples are placed anew from their cooked copies; the grid's strands
+    // (CookedShells::shadow_source) are moved with their clusters and voxelized again with the body (set_body) into a new
+    // shadow grid; the shadows and the lighting pass follow on the next draw. A hair cooked without its grid's strands
+    // keeps its grid (give one with set_shadow_grid). The SATF look-ups stay: a cluster that moves rigidly keeps its
+    // density. Throws coif::Error::parameter for a count other than the clusters' or a transform that is not rigid.
     void set_cluster_transforms(std::span<const glm::mat4> transforms);
+    struct MoveTimings {  // of the last set_cluster_transforms, wall-clock milliseconds
+        double placement_ms = 0;    // the instances and lighting samples placed and uploaded
+        double shadow_grid_ms = 0;  // the strands moved, voxelized with the body, uploaded
+    };
+    const MoveTimings& move_timings() const { return move_timings_; }
     // Replaces the hair's shadow grid (e.g. voxelized from the moved strands); a body (set_body) is voxelized into it anew.
     void set_shadow_grid(DensityGrid grid);
     // Draws into the bound framebuffer (cleared to the background first). `floor` draws the same
@@ -193,6 +199,7 @@ private:
     std::unique_ptr<Impl> impl_;
     ShellStats stats_;
     ShellTimings timings_;
+    MoveTimings move_timings_;
     glm::vec3 bounds_min_{0}, bounds_max_{0};
 };
 

@@ -18,7 +18,6 @@
 
 namespace coif {
 
-inline constexpr int kShadowGridSize = 64;  // shadow grid voxels along the hair's longest axis (docs/renderer.md: error and cost)
 
 // What the atlas of any subset of a database's records needs from all of them: the quantisation ranges of the 12
 // channels (online/shells/record_atlas.h), each record's mean α and mean re a0, and re_norm. One pass over the

@@ -3,9 +3,7 @@
 #include <chrono>
 
 #include "models/core/error.h"
-#include "models/style_strands.h"
-#include "online/scene/cook.h"
-#include "online/shells/shadow_grid.h"
+#include "online/shells/prepared_shells.h"
 
 namespace coif::gl {
 namespace {
@@ -26,15 +24,13 @@ HairMotion::HairMotion(const HairStyle& style, const BodyMesh& body, const glm::
     }
     posed_ = body_;
     rest_ = rest_pose(body_);
-    bone_of_ = bone_map(style.skinning->bones, body_.bones);
     bool any = false;
-    for (int b : bone_of_) any = any || b >= 0;
+    for (int b : bone_map(style.skinning->bones, body_.bones)) any = any || b >= 0;
     if (!any) throw Error::parameter("skinning", "none of the style's bones is in the body's skeleton (matched by name)");
     influences_ = style.skinning->clusters;
-    strands_ = sample_strands(style, StrandSampling{}, &strand_cluster_);  // the strands cook_shells voxelizes
-    for (glm::vec3& p : strands_.points) p = hair_orientation * p;
+    style_bones_ = style.skinning->bones;
+    rest_roots_ = cluster_roots(style, hair_orientation);
     for (const Cluster& c : style.clusters) {
-        rest_roots_.push_back(hair_orientation * glm::vec3(c.placement.apply(c.shape->position(0.0))));
         std::vector<glm::vec3> chain;  // the axis, sampled evenly in t, for the dynamics
         for (int i = 0; i < kChainPoints; ++i)
             chain.push_back(hair_orientation * glm::vec3(c.placement.apply(c.shape->position(static_cast<double>(i) / (kChainPoints - 1)))));
@@ -42,7 +38,6 @@ HairMotion::HairMotion(const HairStyle& style, const BodyMesh& body, const glm::
     }
     roots_ = rest_roots_;
     transforms_.assign(style.clusters.size(), glm::mat4(1.0f));
-    moved_ = strands_;
 }
 
 void HairMotion::simulate(const DynamicsParams& params) {
@@ -56,8 +51,10 @@ void HairMotion::pose(ShellRenderer& renderer, const BonePose& pose) {
     if (pose.transforms.size() != body_.bones.size() || pose.pivots.size() != body_.bones.size())
         throw Error::parameter("pose", "it has " + std::to_string(pose.transforms.size()) + " bones, the body " +
                                            std::to_string(body_.bones.size()));
-    skin_body(body_, pose, posed_.positions, posed_.normals);
-    for (std::size_t c = 0; c < influences_.size(); ++c) transforms_[c] = cluster_transform(influences_[c], bone_of_, pose, rest_roots_[c]);
+    const std::vector<glm::mat4> body_bones = pose.matrices();
+    skin_body(body_, body_bones, posed_.positions, posed_.normals);
+    const std::vector<glm::mat4> bones = map_bone_matrices(body_bones, body_.bones, style_bones_);
+    for (std::size_t c = 0; c < influences_.size(); ++c) transforms_[c] = cluster_transform(influences_[c], bones, rest_roots_[c]);
     if (dynamics_) {  // the skinned transforms drive the roots; the simulated axes give the clusters' transforms
         if (!dynamics_started_) {
             dynamics_->reset(transforms_);
@@ -71,17 +68,11 @@ void HairMotion::pose(ShellRenderer& renderer, const BonePose& pose) {
     for (std::size_t c = 0; c < influences_.size(); ++c) roots_[c] = glm::vec3(transforms_[c] * glm::vec4(rest_roots_[c], 1.0f));
     timings_.skinning_ms = ms_since(t0);
     t0 = Clock::now();
+    renderer.set_body(&posed_, glm::mat3(1.0f), false);  // voxelized into the grid that set_cluster_transforms makes
+    const double body_ms = ms_since(t0);
     renderer.set_cluster_transforms(transforms_);
-    timings_.deformation_ms = ms_since(t0);
-    t0 = Clock::now();
-    for (std::size_t s = 0; s < strand_cluster_.size(); ++s) {
-        const glm::mat4& T = transforms_[strand_cluster_[s]];
-        for (std::uint32_t k = strands_.offsets[s]; k < strands_.offsets[s + 1]; ++k)
-            moved_.points[k] = glm::vec3(T * glm::vec4(strands_.points[k], 1.0f));
-    }
-    renderer.set_body(&posed_, glm::mat3(1.0f), false);  // voxelized into the new grid by set_shadow_grid
-    renderer.set_shadow_grid(voxelize_strands(moved_, glm::mat3(1.0f), kShadowGridSize));
-    timings_.shadow_grid_ms = ms_since(t0);
+    timings_.deformation_ms = renderer.move_timings().placement_ms;
+    timings_.shadow_grid_ms = body_ms + renderer.move_timings().shadow_grid_ms;
 }
 
 }  // namespace coif::gl

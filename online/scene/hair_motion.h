@@ -3,8 +3,8 @@
 // bones are posed (models/skinning.h: a rigid transform per bone about its pivot), and each frame
 //   skinning     the body's vertices by linear blend skinning, each cluster's rigid transform from its bone weights;
 //   deformation  the clusters' instances and lighting samples moved (ShellRenderer::set_cluster_transforms);
-//   shadow grid  the style's strands, moved with their clusters, voxelized again with the posed body
-//                (ShellRenderer::set_shadow_grid, set_body);
+//   shadow grid  the grid's strands, moved with their clusters, voxelized again with the posed body (the same call,
+//                after ShellRenderer::set_body);
 // then the renderer's shadow and lighting passes follow on its next draw. The SATF look-ups stay: a cluster moved rigidly
 // keeps its density. That holds while clusters move as rigid bodies; strands that bend within a cluster (simulation, a
 // cluster spanning a joint) would change the sectors' densities, which this does not follow.
@@ -16,7 +16,6 @@
 #include "models/hair_dynamics.h"
 #include "models/hair_style.h"
 #include "models/skinning.h"
-#include "models/strands.h"
 #include "online/shell_renderer.h"
 
 namespace coif::gl {
@@ -55,16 +54,13 @@ public:
 
 private:
     BodyMesh body_, posed_;                 // in the renderer's space
-    Strands strands_;                       // the style's sampled strands, in the renderer's space
-    std::vector<std::uint32_t> strand_cluster_;
+    std::vector<std::string> style_bones_;
     std::vector<BoneInfluence> influences_;  // per cluster, over the style's bones
-    std::vector<int> bone_of_;               // the style's bones → the body's
     std::vector<glm::vec3> rest_roots_, roots_;
     std::vector<std::vector<glm::vec3>> chains_;  // each cluster's axis at rest (kChainPoints points)
     std::vector<glm::mat4> transforms_;
     BonePose rest_;
     MotionTimings timings_;
-    Strands moved_;  // scratch
     std::optional<ClusterDynamics> dynamics_;
     bool dynamics_started_ = false;
     BodyCollider collider_;

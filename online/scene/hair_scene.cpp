@@ -61,6 +61,9 @@ ShellView cook_view(const HairStyle& style, const SatfIndex& satf, const std::ve
 HairScene::HairScene(HairSceneDesc desc)
     : lights_label(std::move(desc.lights_label)), lights(std::move(desc.lights)), style(std::move(desc.style)) {
     ShellView v;
+    // A body is turned as the style's strands were on import and are when drawn; an asset holds that turn.
+    const glm::mat3 body_orientation =
+        desc.cooked ? desc.cooked->body_orientation : style_orientation(style) * style_source_rotation(style);
     if (desc.cooked) {
         database_label = desc.cooked->database;
         if (desc.headless) context = Context::headless();
@@ -74,7 +77,7 @@ HairScene::HairScene(HairSceneDesc desc)
     }
     renderer = std::move(v.renderer);
     if (desc.body) {
-        const glm::mat3 orientation = desc.cooked ? glm::mat3(1.0f) : style_orientation(style) * style_source_rotation(style);
+        const glm::mat3& orientation = body_orientation;
         renderer->set_body(&*desc.body, orientation);
         if (!desc.framing.box) {  // frame the character: the hair's box and the body's
             const auto [lo, hi] = desc.body->bounds(orientation);

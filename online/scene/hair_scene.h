@@ -54,9 +54,8 @@ struct HairSceneDesc {
     int lighting_rows = 0;             // ShellRenderer's lighting_rows_per_hsv (0: one per mesh row)
     const AbsorptionMap* absorption = nullptr;  // painted σa, or null; must outlive the scene
     // A character's body under the hair (ShellRenderer::set_body), in the strand file's frame: turned as the style's
-    // strands were on import (style_source_rotation) and are when drawn (style_orientation); for an asset, taken as in the
-    // asset's own (drawn) frame. Unless framing.box is
-    // set, the camera frames the hair and the body together.
+    // strands were on import (style_source_rotation) and are when drawn (style_orientation), which an asset holds
+    // (CookedShells::body_orientation). Unless framing.box is set, the camera frames the hair and the body together.
     std::optional<BodyMesh> body;
     SceneFraming framing;
     // Make a headless GL context (EGL) for the scene; false: draw with the caller's, current on this thread (a

@@ -24,13 +24,15 @@ namespace {
 
 constexpr char kMagic[8] = {'C', 'O', 'I', 'F', 'H', 'A', 'I', 'R'};
 constexpr std::size_t kHeader = 32;
-constexpr std::uint32_t kSections = 15;
+constexpr std::uint32_t kSections = 20;
 // Bounds that no real asset comes near and that keep a hostile one from asking for absurd memory.
 constexpr std::uint64_t kMaxElements = 1ull << 31;
 constexpr int kMaxLayoutCount = 4096;
+constexpr std::size_t kMaxBones = 1 << 16;
 
 static_assert(sizeof(ShellVertex) == 56 && sizeof(MeshRange) == 16 && sizeof(ShellSector) == 48 &&
-              sizeof(ShellInstance) == 80 && sizeof(LightingSample) == 96 && sizeof(glm::vec3) == 12);
+              sizeof(ShellInstance) == 80 && sizeof(LightingSample) == 96 && sizeof(glm::vec3) == 12 &&
+              sizeof(BoneInfluence) == 32);
 static_assert(std::is_trivially_copyable_v<ShellVertex> && std::is_trivially_copyable_v<LightingSample>);
 
 std::uint32_t tag(const char (&t)[5]) {
@@ -96,6 +98,11 @@ nlohmann::json meta_json(const CookedShells& c) {
     j["grid"] = {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"origin", vec_json(g.origin)}, {"voxel", g.voxel},
                  {"strands_min", vec_json(g.strands_min)}, {"strands_max", vec_json(g.strands_max)}};
     j["params"] = gl::shell_settings_json(c.defaults);
+    nlohmann::json turn = nlohmann::json::array();
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) turn.push_back(c.body_orientation[col][row]);
+    j["body_orientation"] = turn;
+    j["bones"] = c.skinning ? c.skinning->bones : std::vector<std::string>{};
     return j;
 }
 
@@ -228,6 +235,13 @@ std::vector<std::byte> hair_asset_bytes(const CookedShells& c) {
     w.section("MA0_", std::span<const float>(c.atlas.mean_a0));
     w.section("GDIA", std::span<const glm::vec4>(c.grid.diagonal_xy));
     w.section("GOFF", std::span<const glm::vec2>(c.grid.off_diagonal));
+    w.section("ROOT", std::span<const glm::vec3>(c.roots));
+    // The grid's strands only for hair that moves with a skeleton: a still one's asset does not carry (or load) them.
+    const bool moves = c.skinning.has_value();
+    w.section("SPNT", moves ? std::span<const glm::vec3>(c.shadow_source.points) : std::span<const glm::vec3>());
+    w.section("SOFF", moves ? std::span<const std::uint32_t>(c.shadow_source.offsets) : std::span<const std::uint32_t>());
+    w.section("SCLU", moves ? std::span<const std::uint32_t>(c.shadow_strand_cluster) : std::span<const std::uint32_t>());
+    w.section("SKIN", c.skinning ? std::span<const BoneInfluence>(c.skinning->clusters) : std::span<const BoneInfluence>());
     std::vector<std::byte>& out = w.out;
     std::memcpy(out.data(), kMagic, 8);
     std::memcpy(out.data() + 8, &kHairAssetVersion, 4);
@@ -340,6 +354,16 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     if (!(g.voxel > 0)) r.fail("META/grid/voxel", "must be > 0");
     g.strands_min = vec_of<3>(gj.value("strands_min", nlohmann::json()), "META/grid/strands_min", r);
     g.strands_max = vec_of<3>(gj.value("strands_max", nlohmann::json()), "META/grid/strands_max", r);
+    if (!meta.contains("body_orientation") || !meta["body_orientation"].is_array() || meta["body_orientation"].size() != 9)
+        r.fail("META/body_orientation", "expected 9 numbers");
+    for (int i = 0; i < 9; ++i) {
+        if (!meta["body_orientation"][i].is_number()) r.fail("META/body_orientation", "expected 9 numbers");
+        c.body_orientation[i / 3][i % 3] = meta["body_orientation"][i].get<float>();
+    }
+    if (!finite(c.body_orientation[0]) || !finite(c.body_orientation[1]) || !finite(c.body_orientation[2]))
+        r.fail("META/body_orientation", "not finite");
+    const std::vector<std::string> bones = field<std::vector<std::string>>(meta, "bones", "META", r);
+    if (bones.size() > kMaxBones) r.fail("META/bones", "absurd bone count " + std::to_string(bones.size()));
     if (!meta.contains("params")) r.fail("META/params", "missing");
     try {
         c.defaults = gl::shell_settings_from_json(meta["params"], file.string());
@@ -362,6 +386,11 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     a.mean_a0 = r.section<float>("MA0_");
     g.diagonal_xy = r.bulk<glm::vec4>("GDIA");
     g.off_diagonal = r.bulk<glm::vec2>("GOFF");
+    c.roots = r.section<glm::vec3>("ROOT");
+    c.shadow_source.points = r.section<glm::vec3>("SPNT");
+    c.shadow_source.offsets = r.section<std::uint32_t>("SOFF");
+    c.shadow_strand_cluster = r.section<std::uint32_t>("SCLU");
+    std::vector<BoneInfluence> influences = r.section<BoneInfluence>("SKIN");
     if (r.at != data.size()) r.fail(r.at, "unexpected bytes after the last section");
 
     const std::size_t P = protos.size(), C = cluster_proto.size(), per_proto = L.sector_count();
@@ -430,6 +459,33 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     if (g.diagonal_xy.size() != voxels || g.off_diagonal.size() != voxels) r.fail("GDIA", "expected one value per voxel");
     for (std::size_t i = 0; i < voxels; ++i)
         if (!finite(g.diagonal_xy[i]) || !finite(g.off_diagonal[i])) r.fail("GDIA", "not finite");
+    if (c.roots.size() != C) r.fail("ROOT", "one root per cluster expected");
+    for (const glm::vec3& v : c.roots)
+        if (!finite(v)) r.fail("ROOT", "not finite");
+    const Strands& st = c.shadow_source;
+    if (st.offsets.empty()) {
+        if (!st.points.empty() || !c.shadow_strand_cluster.empty()) r.fail("SOFF", "shadow strand points without offsets");
+    } else {
+        if (st.offsets.size() != c.shadow_strand_cluster.size() + 1 || st.offsets.size() - 1 != c.shadow_strands)
+            r.fail("SOFF", "expected one offset per shadow strand and one more (META/shadow_strands)");
+        if (st.offsets.front() != 0 || st.offsets.back() != st.points.size()) r.fail("SOFF", "must run from 0 to the point count");
+        for (std::size_t i = 1; i < st.offsets.size(); ++i)
+            if (st.offsets[i] < st.offsets[i - 1]) r.fail("SOFF " + std::to_string(i), "offsets must not decrease");
+    }
+    for (const glm::vec3& v : st.points)
+        if (!finite(v)) r.fail("SPNT", "not finite");
+    for (const std::uint32_t v : c.shadow_strand_cluster)
+        if (v >= C) r.fail("SCLU", "a cluster index out of range");
+    if (bones.empty() != influences.empty()) r.fail("SKIN", "bone weights and bone names go together");
+    if (!bones.empty()) {
+        if (influences.size() != C) r.fail("SKIN", "one bone influence per cluster expected");
+        for (std::size_t i = 0; i < C; ++i)
+            for (int k = 0; k < 4; ++k)
+                if (influences[i].bone[k] < 0 || static_cast<std::size_t>(influences[i].bone[k]) >= bones.size() ||
+                    !(influences[i].weight[k] >= 0.0f && influences[i].weight[k] <= 1.0f))
+                    r.fail("SKIN " + std::to_string(i), "a bone outside META/bones or a weight outside [0, 1]");
+        c.skinning = StyleSkinning{bones, std::move(influences)};
+    }
     return c;
 }
 

@@ -3,11 +3,11 @@
 // (CookedShells), and its file, the `.coif` asset that `coif bake` writes and the runtime loads without the HRIR
 // database, FLANN or the style's strands. Cooking from a style is online/scene/cook.h.
 //
-// The `.coif` file, version 1. Little-endian, IEEE-754 floats, every section 8-byte aligned:
+// The `.coif` file, version 2. Little-endian, IEEE-754 floats, every section 8-byte aligned:
 //
 //   byte 0   8  magic "COIFHAIR"
 //   byte 8   u32 format version (kHairAssetVersion)
-//   byte 12  u32 section count (15 in version 1)
+//   byte 12  u32 section count (20 in version 2)
 //   byte 16  u64 file size in bytes
 //   byte 24  u64 XXH3-64 checksum of bytes 32 … end (models/core/checksum.h)
 //   byte 32  the sections, in this order, each a u32 tag (4 ASCII characters), u32 element size in bytes, u64
@@ -21,7 +21,9 @@
 //                    "auto_fiber_radius"; "shadow_strands"; "atlas" (width, height, tiles_per_row, views,
 //                    hrir_length, lo and scale as 3 × 4 numbers, re_norm: online/shells/record_atlas.h); "grid"
 //                    (dims, origin, voxel, strands_min, strands_max: online/shells/shadow_grid.h); "params" (the
-//                    defaults the asset was baked with: the parameters file's keys, online/shells/shell_settings.h).
+//                    defaults the asset was baked with: the parameters file's keys, online/shells/shell_settings.h);
+//                    "body_orientation" (9 numbers, column-major: CookedShells::body_orientation); "bones" (the
+//                    skeleton's bone names, [] when the style has no bone weights).
 //     VERT 56 bytes  ShellVertex (online/shells/prepared_shells.h): the prototypes' layer meshes' vertices
 //     INDX  4        u32 indices, per mesh relative to its base vertex
 //     MESH 16        MeshRange (first, count, base_vertex, vertex_count), prototype-major, `layers` per prototype
@@ -36,6 +38,13 @@
 //     MA0_  4        f32 per atlas record: mean re a0
 //     GDIA 16        vec4 per voxel: the shadow grid's (xx, yy, zz, xy), x fastest
 //     GOFF  8        vec2 per voxel: (xz, yz)
+//     ROOT 12        vec3 per cluster: its axis's root (CookedShells::roots)
+//     SPNT 12        vec3 per point of the shadow strands (CookedShells::shadow_source: the points)
+//     SOFF  4        u32 per shadow strand, and one more: where its points start (the last: the point count)
+//     SCLU  4        u32 per shadow strand: its cluster
+//                    (these three are empty unless the style has bone weights: a still hair's asset does not carry
+//                    the 3 MB of the default style's strands, nor load them)
+//     SKIN 32        BoneInfluence per cluster (i32 bone × 4 into "bones", f32 weight × 4), or none (no "bones")
 //
 // What the sections imply is not stored: each cluster's index (the per-instance attribute 0, 1, 2, …) and the
 // triangle count are derived on reading.
@@ -44,7 +53,7 @@
 // re_norm, so that an asset draws bit-identically to its style cooked live (both draw a CookedShells).
 //
 // Compatibility: the version changes whenever anything above changes; a reader accepts exactly the versions it
-// was written for (this one: 1) and refuses any other with an error that names both, so an asset is re-baked
+// was written for (this one: 2) and refuses any other with an error that names both, so an asset is re-baked
 // with `coif bake` after such a change. Readers never guess at a layout.
 //
 // Reading validates everything a hostile file could use to make the renderer read out of bounds: sizes, counts
@@ -53,10 +62,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "models/skinning.h"
+#include "models/strands.h"
 #include "online/shells/prepared_shells.h"
 #include "online/shells/record_atlas.h"
 #include "online/shells/shadow_grid.h"
@@ -64,7 +76,7 @@
 
 namespace coif {
 
-inline constexpr std::uint32_t kHairAssetVersion = 1;
+inline constexpr std::uint32_t kHairAssetVersion = 2;
 
 struct CookedShells {
     std::string name;             // the style's
@@ -79,6 +91,14 @@ struct CookedShells {
     std::string database;         // the database cooked against (its path; informative)
     glm::vec3 frame_min{0.0f}, frame_max{0.0f};  // the box a camera frames: the style's strands, turned y-up
     gl::ShellSettings defaults;   // the parameters it was baked with (a live cook: the library's defaults)
+    // What moving the clusters needs (ShellRenderer::set_cluster_transforms; HairRenderer's bone poses):
+    glm::mat3 body_orientation{1.0f};  // turns a body in the style's strand file's frame into the shells' space
+    std::vector<glm::vec3> roots;      // per cluster: its axis's root, in the shells' space (cluster_roots)
+    // The strands voxelized into `grid`, in the shells' space (points and offsets only), and each one's cluster: moved
+    // with their clusters and voxelized again, they give a moved hair's grid.
+    Strands shadow_source;
+    std::vector<std::uint32_t> shadow_strand_cluster;
+    std::optional<StyleSkinning> skinning;  // the style's bone weights (models/skinning.h), when it has them
 };
 
 // The asset's bytes, and its file (written atomically: nothing is left at `path` on failure).

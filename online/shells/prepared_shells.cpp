@@ -76,6 +76,16 @@ glm::mat3 style_orientation(const HairStyle& style) {
     return hang_axis_rotation(st);
 }
 
+std::vector<glm::vec3> cluster_roots(const HairStyle& style, const glm::mat3& orientation) {
+    std::vector<glm::vec3> roots;
+    roots.reserve(style.clusters.size());
+    for (const Cluster& c : style.clusters) {
+        if (!c.shape) throw Error::parameter("style", "a cluster has no shape");
+        roots.push_back(orientation * glm::vec3(c.placement.apply(c.shape->position(0.0))));
+    }
+    return roots;
+}
+
 void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& orientation, int lighting_rows_per_hsv) {
     if (lighting_rows_per_hsv < 0 || lighting_rows_per_hsv > kMaxMeshSubdivision)
         throw Error::parameter("lighting rows per HSV", "must be 0.." + std::to_string(kMaxMeshSubdivision));

@@ -89,6 +89,9 @@ struct PreparedShells {
 // y-up frame already (source "axes": kStyleAxesYUp, written by `coif style import`: it oriented the strands, or their
 // format states its axes, as TressFX's does, whose mohawk sweeps along −z and must not be turned).
 glm::mat3 style_orientation(const HairStyle& style);
+// Each cluster's root (its axis at t = 0), turned by `orientation` into the shells' space: where skinning keeps it on the
+// skin (models/skinning.h cluster_transform).
+std::vector<glm::vec3> cluster_roots(const HairStyle& style, const glm::mat3& orientation);
 
 // Every cluster's bounding box in the shells' space: its outermost layer mesh's box in the prototype's coordinates,
 // placed by its instance (8 corners; an oriented box, tight for long, thin clusters).

@@ -49,6 +49,8 @@ struct DensityGrid {
 // repeats (it is two lines; a test compares the GPU's march with integrate()).
 float projected_length_density(glm::vec4 diagonal_xy, glm::vec2 off_diagonal, glm::vec3 omega);
 
+inline constexpr int kShadowGridSize = 64;  // shadow grid voxels along the hair's longest axis (docs/renderer.md: error and cost)
+
 // Throws coif::Error::parameter on an empty strand set or max_dim outside 8..512.
 DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim);
 

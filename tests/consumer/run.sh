@@ -6,7 +6,8 @@
 #      that prefix alone (find_package(coif COMPONENTS runtime); its CMakeLists.txt fails if the runtime's link
 #      interface names Ceres, Embree, FLANN, GLFW, GoogleTest or Benchmark), built, its ldd checked for them, and run
 #      on an asset baked by the release build: the example host (example_host.cpp) draws a head and the hair with the
-#      public API only, and checks occlusion, its untouched pixels and its GL state.
+#      public API only, and checks occlusion, its untouched pixels and its GL state; with ../shared/data, again with
+#      the Ratboy's body posed through a head turn and the mohawk following its bones.
 #   3. The release build installed whole to build/install-full: the installed coif runs and bakes.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -38,6 +39,18 @@ fi
 grep -q "install-runtime/lib/libcoif_online.so" "$work/ldd.txt" || { echo "test-install: not the installed shared runtime" >&2; cat "$work/ldd.txt"; exit 1; }
 build/release/coif bake @default -o "$work/hair.coif"
 "$work/build/coif_example_host" "$work/hair.coif" "$work/hair.ppm"
+# The same host with a character, when the shared data is there: the Ratboy posed through a head turn, the mohawk
+# (imported with its skinning and baked by the release build) following its bones.
+data=$root/../shared/data
+if [[ -f $data/Ratboy_mohawk.tfx && -f $data/Ratboy_mohawk.tfxbone && -f $data/Ratboy_body.tfxmesh ]]; then
+  build/release/coif style import "$data/Ratboy_mohawk.tfx" --skinning "$data/Ratboy_mohawk.tfxbone" --clusters 32 \
+      -o "$work/ratboy.json" > /dev/null
+  build/release/coif bake "$work/ratboy.json" -o "$work/ratboy.coif" 2> /dev/null
+  "$work/build/coif_example_host" "$work/ratboy.coif" --body "$data/Ratboy_body.tfxmesh" \
+      --animate docs/examples/ratboy_head_turn.json "$work/ratboy.ppm"
+else
+  echo "test-install: skipped the Ratboy host: the real test data in $data is absent"
+fi
 
 echo "test-install: the full install"
 rm -rf build/install-full

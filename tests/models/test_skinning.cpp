@@ -61,8 +61,8 @@ TEST(Skinning, AllWeightOnOneBoneIsThatBonesRigidTransform) {
     BoneInfluence on_b;
     on_b.bone = {1, 0, 0, 0};
     on_b.weight = {1, 0, 0, 0};
-    const std::vector<int> same = {0, 1};
-    const glm::mat4 T = cluster_transform(on_b, same, pose, glm::vec3(3.0f, 2.0f, 1.0f));
+    const std::vector<glm::mat4> bones = pose.matrices();
+    const glm::mat4 T = cluster_transform(on_b, bones, glm::vec3(3.0f, 2.0f, 1.0f));
     for (const glm::vec3 q : {glm::vec3(0.0f), glm::vec3(3, 2, 1), glm::vec3(-1, 5, 2)})
         EXPECT_NEAR(glm::distance(apply(T, q), apply(M, q)), 0.0f, 1e-4f);
     // Half on each: the root goes where the blend puts it, and the frame stays orthonormal.
@@ -70,14 +70,17 @@ TEST(Skinning, AllWeightOnOneBoneIsThatBonesRigidTransform) {
     half.bone = {0, 1, 0, 0};
     half.weight = {0.5f, 0.5f, 0, 0};
     const glm::vec3 root(1.0f, 0.5f, 0.0f);
-    const glm::mat4 H = cluster_transform(half, same, pose, root);
+    const glm::mat4 H = cluster_transform(half, bones, root);
     EXPECT_NEAR(glm::distance(apply(H, root), 0.5f * (root + apply(M, root))), 0.0f, 1e-5f);
     const glm::mat3 R(H);
     EXPECT_NEAR(glm::length(glm::transpose(R) * R[0] - glm::vec3(1, 0, 0)), 0.0f, 1e-5f);
     EXPECT_NEAR(glm::determinant(R), 1.0f, 1e-5f);
-    // A bone of the style that the body lacks (−1) stays at rest.
-    const std::vector<int> missing = {0, -1};
-    EXPECT_EQ(cluster_transform(on_b, missing, pose, root), glm::mat4(1.0f));
+    // A bone of the style that the body lacks stays at rest; a bone outside the matrices is refused.
+    const std::vector<glm::mat4> mapped = map_bone_matrices(bones, {"a", "b"}, {"a", "c"});
+    EXPECT_EQ(mapped[0], bones[0]);
+    EXPECT_EQ(mapped[1], glm::mat4(1.0f));
+    EXPECT_EQ(cluster_transform(on_b, mapped, root), glm::mat4(1.0f));
+    EXPECT_THROW(cluster_transform(on_b, std::span<const glm::mat4>(bones).first(1), root), Error);
 }
 
 TEST(Skinning, ClustersTakeTheMeanOfTheirStrandsWeights) {

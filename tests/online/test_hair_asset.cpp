@@ -111,8 +111,8 @@ TEST(HairAsset, RefusesTruncatedCorruptAndOtherVersionFiles) {
     flipped[good.size() / 2] ^= std::byte{0x40};
     EXPECT_NE(refusal(flipped).find("checksum"), std::string::npos) << refusal(flipped);
     std::vector<std::byte> other = good;
-    other[8] = std::byte{2};
-    EXPECT_NE(refusal(other).find("version 2 (this coif reads version 1"), std::string::npos) << refusal(other);
+    other[8] = std::byte{1};
+    EXPECT_NE(refusal(other).find("version 1 (this coif reads version 2"), std::string::npos) << refusal(other);
     std::vector<std::byte> magic = good;
     magic[3] = std::byte{'X'};
     EXPECT_NE(refusal(magic).find("bad magic"), std::string::npos);
@@ -142,6 +142,33 @@ TEST(HairAsset, RefusesHostileCountsAndIndicesWithTheChecksumRight) {
         CookedShells h = c;
         h.shells.instances[1].info.x += 1;
         EXPECT_NE(refusal(hair_asset_bytes(h)).find("INST 1"), std::string::npos);
+    }
+    // Skinned, so that the grid's strands are written (a still hair's asset leaves them out).
+    CookedShells skinned = c;
+    skinned.skinning = StyleSkinning{{"head"}, std::vector<BoneInfluence>(c.shells.clusters())};
+    EXPECT_EQ(refusal(hair_asset_bytes(skinned)), "accepted");
+    EXPECT_GT(hair_asset_bytes(skinned).size(), hair_asset_bytes(c).size() + 12 * c.shadow_source.points.size());
+    {  // a shadow strand of a cluster that is not there
+        CookedShells h = skinned;
+        h.shadow_strand_cluster[0] = static_cast<std::uint32_t>(h.shells.clusters());
+        EXPECT_NE(refusal(hair_asset_bytes(h)).find("SCLU: a cluster index out of range"), std::string::npos);
+    }
+    {  // shadow strands whose offsets run past their points
+        CookedShells h = skinned;
+        h.shadow_source.offsets.back() += 1;
+        EXPECT_NE(refusal(hair_asset_bytes(h)).find("SOFF"), std::string::npos);
+    }
+    {  // a NaN root
+        CookedShells h = c;
+        h.roots[0].z = std::nanf("");
+        EXPECT_NE(refusal(hair_asset_bytes(h)).find("ROOT: not finite"), std::string::npos);
+    }
+    {  // bone weights naming a bone beyond the skeleton, and weights without bones
+        CookedShells h = skinned;
+        h.skinning->clusters[0].bone.y = 1;
+        EXPECT_NE(refusal(hair_asset_bytes(h)).find("SKIN 0"), std::string::npos);
+        h.skinning->bones.clear();
+        EXPECT_NE(refusal(hair_asset_bytes(h)).find("bone weights and bone names go together"), std::string::npos);
     }
     {  // an absurd element count in the first section after META, checksum resealed
         std::vector<std::byte> b = hair_asset_bytes(c);
@@ -200,6 +227,14 @@ TEST(HairAsset, FileIsWrittenAtomicallyAndReadBack) {
         t.grid.dims = glm::ivec3(2);
         t.grid.diagonal_xy.vector().assign(8, glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
         t.grid.off_diagonal.vector().assign(8, glm::vec2(0.0f));
+        // Two shadow strands of two points, and the cluster skinned to one bone.
+        t.shadow_source.points = {glm::vec3(0.0f), glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(0.5f), glm::vec3(0.5f, -1.0f, 0.5f)};
+        t.shadow_source.offsets = {0, 2, 4};
+        t.shadow_strand_cluster = {0, 0};
+        t.shadow_strands = 2;
+        BoneInfluence on_head;
+        on_head.weight = {1, 0, 0, 0};
+        t.skinning = StyleSkinning{{"head"}, {on_head}};
         write_hair_asset(seed, t);
     }
 }

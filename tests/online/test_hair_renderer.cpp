@@ -3,6 +3,7 @@
 // hair) is tests/consumer/example_host.cpp, run as online.ExampleHost.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <string>
@@ -14,6 +15,7 @@
 #include "online/gl_context.h"
 #include "online/hair_renderer.h"
 #include "online/scene/cook.h"
+#include "online/scene/hair_motion.h"
 #include "online/shell_renderer.h"
 #include "tests/online/shell_test_scene.h"
 
@@ -283,6 +285,85 @@ TEST(HairRenderer, MessagesGoToTheHostsLogSink) {
     set_log_sink(previous);
     ASSERT_FALSE(messages.empty());
     EXPECT_NE(messages.back().find("dual-scattering tables"), std::string::npos) << messages.back();
+}
+
+TEST(HairRenderer, FollowsTheBonesItIsGivenAsTheAuthoringMotionDoes) {
+    // The two-cluster hair skinned to bones "a" (left) and "b" (right), through its asset's bytes, on a body of two plates
+    // over the roots (one per bone). Posed through FrameInputs::bones, the runtime draws what the authoring path (HairMotion
+    // on a ShellRenderer, which coif render --animate uses) draws for the same pose into the same host frame: the same
+    // cluster transforms, the same strands voxelized again with the same posed body, so the same pixels.
+    std::unique_ptr<gl::Context> context = gl::Context::headless();
+    const HairStyle style = test::two_cluster_style(true);
+    const CookedShells c = cook_shells(style, test_index(), glm::mat3(1.0f));
+    const CookedShells read = parse_hair_asset(hair_asset_bytes(c), "two.coif");
+    HairRenderer hr{CookedShells(read)};
+    ASSERT_EQ(hr.bones(), (std::vector<std::string>{"a", "b"}));
+    BodyMesh head;
+    head.bones = {"a", "b"};
+    for (float x : {-5.0f, -1.0f, 1.0f, 5.0f})
+        for (float z : {-2.0f, 2.0f}) head.positions.push_back({x, 1.0f, z});
+    head.normals.assign(head.positions.size(), glm::vec3(0, 1, 0));
+    for (const glm::vec3& p : head.positions) {
+        BoneInfluence b;
+        b.weight = {1, 0, 0, 0};
+        if (p.x > 0.0f) b.bone = {1, 0, 0, 0};
+        head.influences.push_back(b);
+    }
+    head.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 6, 5}, {5, 6, 7}};
+    hr.set_body(&head);
+
+    const Camera cam = camera_of(hr);
+    const std::vector<SrbfLight> lights = two_lights();
+    HostFrame host;
+    const auto frame = [&](std::span<const glm::mat4> bones) {
+        host.clear(1.0f, 1.0f);
+        FrameInputs f = inputs(cam, host, lights);
+        f.bones = bones;
+        hr.draw(f);
+        return host.read();
+    };
+    const std::vector<glm::vec4> rest = frame({});
+    const std::vector<glm::mat4> identity(2, glm::mat4(1.0f));
+    EXPECT_EQ(frame(identity), rest);  // the rest pose given as matrices: the cooked grid voxelized again, bit for bit
+
+    gl::HairMotion motion(style, head, glm::mat3(1.0f), glm::mat3(1.0f));
+    BonePose pose = motion.rest();
+    pose.transforms[1] = {glm::angleAxis(0.5f, glm::vec3(0, 0, 1)), glm::vec3(0.0f, 1.0f, 0.0f)};  // b turns and rises
+    const std::vector<glm::mat4> bones = pose.matrices();
+    const std::vector<glm::vec4> posed = frame(bones);
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < posed.size(); ++i) changed += posed[i] != rest[i];
+    EXPECT_GT(changed, posed.size() / 50);
+
+    gl::ShellRenderer authoring{CookedShells(read)};
+    authoring.set_body(&head);
+    motion.pose(authoring, pose);
+    host.clear(1.0f, 1.0f);
+    FrameInputs f = inputs(cam, host, lights);
+    gl::FrameTarget target;
+    target.viewport = f.viewport;
+    target.over = true;
+    gl::ShellSettings s = hr.defaults();
+    s.samples = 1;
+    s.timed = false;
+    glBindFramebuffer(GL_FRAMEBUFFER, host.fb);
+    authoring.draw_frame(f.view, f.projection, lights, s, target);
+    EXPECT_EQ(host.read(), posed);
+    std::printf("pose: %zu of %zu pixels changed; skinning and grid: placement %.2f ms, shadow grid %.2f ms\n", changed,
+                posed.size(), hr.shells().move_timings().placement_ms, hr.shells().move_timings().shadow_grid_ms);
+
+    // Bones it cannot follow: a count other than the asset's, a matrix that is not finite, bones for unskinned hair.
+    f = inputs(cam, host, lights);
+    f.bones = std::span<const glm::mat4>(bones).first(1);
+    EXPECT_THROW(hr.draw(f), Error);
+    std::vector<glm::mat4> nan = bones;
+    nan[1][3][0] = std::nanf("");
+    f.bones = nan;
+    EXPECT_THROW(hr.draw(f), Error);
+    HairRenderer unskinned{CookedShells(cooked())};
+    EXPECT_TRUE(unskinned.bones().empty());
+    f.bones = bones;
+    EXPECT_THROW(unskinned.draw(f), Error);
 }
 
 }  // namespace

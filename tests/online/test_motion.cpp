@@ -89,7 +89,7 @@ TEST(Motion, AMovedBodyChangesTheShadowGridWhereItMovedAndOnlyThere) {
 
 TEST(Motion, ARigidMotionOfTheHairAndItsLightsIsTheCameraMovedInversely) {
     // Hair and lights moved by M, seen by the camera moved by M, are the hair seen by the camera: exactly, but for the
-    // shadow grid, which is voxelized anew on axes that did not turn with the hair.
+    // shadow grid, which set_cluster_transforms voxelizes anew on axes that did not turn with the hair.
     Scene sc;
     const glm::mat4 M = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f, -1.0f, 3.0f)) *
                         glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f)));
@@ -99,14 +99,10 @@ TEST(Motion, ARigidMotionOfTheHairAndItsLightsIsTheCameraMovedInversely) {
         s.samples = 1;
         s.shadows = shadows;
         sc.renderer.set_cluster_transforms(std::vector<glm::mat4>(2, glm::mat4(1.0f)));
-        sc.renderer.set_shadow_grid(voxelize_strands(sample_strands(sc.style, StrandSampling{}), glm::mat3(1.0f), kShadowGridSize));
         sc.renderer.set_lights(test::two_lights());
         const Image still = sc.renderer.render(sc.camera, s);
 
-        sc.renderer.set_cluster_transforms(std::vector<glm::mat4>(2, M));
-        Strands moved = sample_strands(sc.style, StrandSampling{});
-        for (glm::vec3& p : moved.points) p = glm::vec3(M * glm::vec4(p, 1.0f));
-        sc.renderer.set_shadow_grid(voxelize_strands(moved, glm::mat3(1.0f), kShadowGridSize));
+        sc.renderer.set_cluster_transforms(std::vector<glm::mat4>(2, M));  // which voxelizes the moved strands
         std::vector<SrbfLight> lights = test::two_lights();
         for (SrbfLight& l : lights) l.omega = R * l.omega;
         sc.renderer.set_lights(lights);
