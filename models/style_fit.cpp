@@ -190,26 +190,6 @@ double quantile(std::vector<double> v, double q) {
     return v[i] + (x - i) * (v[i + 1] - v[i]);
 }
 
-// Median nearest-neighbour distance between roots (a grid hash would be faster; n ≤ 1e5 here).
-double median_root_spacing(const std::vector<glm::dvec3>& roots) {
-    if (roots.size() < 2) return 1.0;
-    std::vector<std::size_t> order(roots.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return roots[a].x < roots[b].x; });
-    std::vector<double> nn(roots.size(), std::numeric_limits<double>::max());
-    for (std::size_t a = 0; a < order.size(); ++a) {
-        const glm::dvec3& p = roots[order[a]];
-        double& best = nn[order[a]];
-        for (std::size_t b = a + 1; b < order.size() && roots[order[b]].x - p.x < std::sqrt(best); ++b)
-            best = std::min(best, glm::dot(roots[order[b]] - p, roots[order[b]] - p));
-        for (std::size_t b = a; b-- > 0 && p.x - roots[order[b]].x < std::sqrt(best);)
-            best = std::min(best, glm::dot(roots[order[b]] - p, roots[order[b]] - p));
-    }
-    for (double& d : nn) d = std::sqrt(d);
-    const double m = quantile(nn, 0.5);
-    return m > 0 ? m : 1e-3;
-}
-
 struct FittedCluster {
     std::vector<std::size_t> members;
     std::shared_ptr<GeneralizedCylinder> shape;
@@ -461,6 +441,26 @@ double descriptor_distance(const Descriptor& proto, const Descriptor& cand, cons
 }
 
 }  // namespace
+
+// Median nearest-neighbour distance between roots (a grid hash would be faster; n ≤ 1e5 here).
+double median_root_spacing(const std::vector<glm::dvec3>& roots) {
+    if (roots.size() < 2) return 1.0;
+    std::vector<std::size_t> order(roots.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return roots[a].x < roots[b].x; });
+    std::vector<double> nn(roots.size(), std::numeric_limits<double>::max());
+    for (std::size_t a = 0; a < order.size(); ++a) {
+        const glm::dvec3& p = roots[order[a]];
+        double& best = nn[order[a]];
+        for (std::size_t b = a + 1; b < order.size() && roots[order[b]].x - p.x < std::sqrt(best); ++b)
+            best = std::min(best, glm::dot(roots[order[b]] - p, roots[order[b]] - p));
+        for (std::size_t b = a; b-- > 0 && p.x - roots[order[b]].x < std::sqrt(best);)
+            best = std::min(best, glm::dot(roots[order[b]] - p, roots[order[b]] - p));
+    }
+    for (double& d : nn) d = std::sqrt(d);
+    const double m = quantile(nn, 0.5);
+    return m > 0 ? m : 1e-3;
+}
 
 void check_gaussian_width(double width, const Strands& strands, const std::string& place) {
     char value[64];

@@ -117,6 +117,10 @@ void check_gaussian_width(double width, const Strands& strands, const std::strin
 // layout.gaussian_width other than 0 that check_gaussian_width refuses.
 HairStyle fit_style(const Strands& strands, const FitOptions& options, FitReport* report = nullptr);
 
+// The median distance from each root to its nearest neighbouring root (the automatic λ above; 1 for fewer than two
+// roots, 1e-3 when they coincide).
+double median_root_spacing(const std::vector<glm::dvec3>& roots);
+
 // The fitting error of `style` for `strands` already rotated into the style's coordinates, with
 // strand_cluster[i] the cluster index of strand i (−1: none; its points count as outside, at no
 // measured distance) and strand_crosses[i] whether it feeds its cluster's density (assigned).

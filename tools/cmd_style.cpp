@@ -8,6 +8,7 @@
 #include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "models/core/progress.h"
+#include "models/follow_strands.h"
 #include "models/hair_style.h"
 #include "models/sector_density.h"
 #include "models/strands.h"
@@ -116,6 +117,7 @@ void add_style(CLI::App& root) {
         coif::FitOptions fit;
         std::vector<int> grid{8, 4};
         std::optional<double> gaussian_width;  // absent: automatic (models/style_fit.h)
+        coif::FollowOptions follow;
         bool no_orient = false, json = false, check = false;
     };
     auto io = std::make_shared<ImportOptions>();
@@ -154,6 +156,20 @@ void add_style(CLI::App& root) {
     imp->add_option("--seed", io->fit.seed, "Seed of the k-means++ initialisation")->capture_default_str();
     imp->add_option("--name", io->name, "Name written into the style (default: the model's file name)");
     imp->add_flag("--no-orient", io->no_orient, "Keep the file's axes even if the hair does not hang along -y");
+    imp->add_option("--strands-per-guide", io->follow.strands_per_guide,
+                    "Treat the file's strands as guides and fill each with N - 1 follow strands before fitting, as AMD TressFX\n"
+                    "does with its follow hairs (models/follow_strands.h): each follower is its guide moved by an offset drawn\n"
+                    "from a disc across the guide's root, widening toward the tip. For guide-strand files (TressFX .tfx) and\n"
+                    "sparse ones (Curly_100, Bangs_100), whose clusters are otherwise far sparser than the HRIR database's\n"
+                    "sectors. Skinning weights follow their guide's")
+        ->capture_default_str()->check(CLI::Range(1, coif::kMaxStrandsPerGuide));
+    imp->add_option("--follow-radius", io->follow.radius,
+                    "Radius of the disc the followers' root offsets are drawn from, in the file's units; 0: the median\n"
+                    "distance between neighbouring roots")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    imp->add_option("--tip-separation", io->follow.tip_separation,
+                    "How much wider the followers spread at the tip than at the root (TressFX's tip separation factor)")
+        ->capture_default_str()->check(CLI::Range(0.0, 100.0));
     imp->add_option("--skinning", io->skinning,
                     "The strands' bone weights (AMD TressFX .tfxbone, one record per strand of the model): each cluster gets the\n"
                     "mean of its strands' weights (the four largest, renormalised), written into the style for `coif render\n"
@@ -167,7 +183,8 @@ void add_style(CLI::App& root) {
     coif::cli::examples(imp, "  coif style import ../shared/data/harolongo.data --clusters 64 -o harolongo64.json\n"
                              "  coif style import ../shared/data/Bangs_100.hair --clusters 32 -o bangs.json --json\n"
                              "  coif style import ../shared/data/Curly_100.hair --clusters 8 --gaussian-width 2 -o curly8.json\n"
-                             "  coif style import ../shared/data/Ratboy_mohawk.tfx --skinning ../shared/data/Ratboy_mohawk.tfxbone -o mohawk.json");
+                             "  coif style import ../shared/data/Ratboy_mohawk.tfx --skinning ../shared/data/Ratboy_mohawk.tfxbone -o mohawk.json\n"
+                             "  coif style import ../shared/data/Ratboy_mohawk.tfx --strands-per-guide 8 -o mohawk8.json");
     imp->callback([io] {
         const auto t0 = std::chrono::steady_clock::now();
         coif::cli::lock_output(io->out);
@@ -177,7 +194,8 @@ void add_style(CLI::App& root) {
         fit.layout.grid_r = io->grid[1];
         fit.orient_y_up = !io->no_orient;
         fit.progress = !io->json;
-        const coif::Strands strands = coif::read_strands(io->in);
+        coif::Strands strands = coif::read_strands(io->in);
+        const std::size_t file_strands = strands.strand_count();
         std::optional<coif::StrandSkinning> skinning;
         if (!io->skinning.empty()) {
             skinning = coif::read_tfxbone(io->skinning);
@@ -185,6 +203,22 @@ void add_style(CLI::App& root) {
                 throw coif::Error(io->skinning, "strand count",
                                   std::to_string(skinning->strands.size()) + " skinned strands, but " + io->in + " has " +
                                       std::to_string(strands.strand_count()));
+        }
+        double follow_radius = 0;
+        if (io->follow.strands_per_guide > 1) {
+            io->follow.seed = io->fit.seed;
+            std::vector<std::uint32_t> guide_of;
+            strands = coif::follow_strands(strands, io->follow, &guide_of, &follow_radius);
+            if (skinning) {  // each follower takes its guide's weights
+                std::vector<coif::BoneInfluence> per_strand;
+                per_strand.reserve(guide_of.size());
+                for (const std::uint32_t g : guide_of) per_strand.push_back(skinning->strands[g]);
+                skinning->strands = std::move(per_strand);
+            }
+        } else if (!io->json && (strands.axes_stated || file_strands < 1000)) {
+            std::fprintf(stderr, "coif: note: %s holds %s: --strands-per-guide N fills each with followers as TressFX does, so that "
+                                 "its clusters are as dense as the database's sectors\n",
+                         io->in.c_str(), strands.axes_stated ? "TressFX guide strands" : (std::to_string(file_strands) + " strands").c_str());
         }
         if (io->gaussian_width) coif::check_gaussian_width(*io->gaussian_width, strands, "--gaussian-width");
         const double seconds_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -204,6 +238,10 @@ void add_style(CLI::App& root) {
                         {"rotation_applied", {{r[0][0], r[1][0], r[2][0]}, {r[0][1], r[1][1], r[2][1]}, {r[0][2], r[1][2], r[2][2]}}},
                         {"axes", fit.orient_y_up || strands.axes_stated ? coif::kStyleAxesYUp : "as in the source file"},
                         {"skinning", io->skinning.empty() ? nlohmann::json(nullptr) : nlohmann::json(fs::path(io->skinning).filename().string())},
+                        {"follow", io->follow.strands_per_guide > 1
+                                       ? nlohmann::json{{"strands_per_guide", io->follow.strands_per_guide}, {"radius", follow_radius},
+                                                        {"tip_separation", io->follow.tip_separation}, {"guides", file_strands}}
+                                       : nlohmann::json(nullptr)},
                         {"fit", {{"clusters_requested", fit.clusters}, {"coverage", fit.coverage}, {"macro_tolerance", fit.macro_tolerance},
                                  {"store_every", fit.store_every}, {"seed", fit.seed}}},
                         {"fitting_error", error_json(e)},
@@ -216,6 +254,8 @@ void add_style(CLI::App& root) {
                                    {"output", io->out},
                                    {"orientation", orientation_words(r)},
                                    {"gaussian_width", style.layout.gaussian_width},
+                                   {"strands", strands.strand_count()},
+                                   {"follow_radius", io->follow.strands_per_guide > 1 ? nlohmann::json(follow_radius) : nlohmann::json(nullptr)},
                                    {"counts", counts_json(style)},
                                    {"fitting_error", error_json(e)},
                                    {"stray", stray_json(sr)},
@@ -227,6 +267,9 @@ void add_style(CLI::App& root) {
         std::printf("%s: %zu strands, %zu points -> %zu clusters (%zu prototypes; %zu instances in %zu macro-clusters)\n",
                     io->in.c_str(), strands.strand_count(), strands.points.size(), c.clusters, c.prototypes, c.instances,
                     c.shared_macro_clusters);
+        if (io->follow.strands_per_guide > 1)
+            std::printf("  follow strands   %zu guides, %d strands each, root offsets within %.4g (file units), %.3gx wider at the tips\n",
+                        file_strands, io->follow.strands_per_guide, follow_radius, 1.0 + io->follow.tip_separation);
         std::printf("  orientation      %s\n", orientation_words(r).c_str());
         std::printf("  Gaussian width   %.4g (file units)\n", style.layout.gaussian_width);
         std::printf("  fitting error    %.2f %% of points inside their cluster's envelope; RMS distance of the others %.4g "
