@@ -226,6 +226,54 @@ TEST(Cli, StrandsPerGuideFillSparseHairToTheDatabasesDensity) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, StyleEditsMoveCopyMirrorAndDeleteClustersWithTheirPaintedRows) {
+    // coif style transform | duplicate | mirror | delete | set on the default style (models/style_edit.h; its exactness
+    // is models.StyleEdit.*): the clusters asked for change, the painted absorption rows follow, bad input writes nothing.
+    const auto dir = test::scratch_dir("cli-style-edit");
+    const auto p = [&](const char* name) { return "'" + (dir / name).string() + "'"; };
+    // Cluster c10 (index 10) painted black, the rest left at the default.
+    auto r = run_coif("style paint-absorption @default --streak 10:0.02,0.02,0.02 -o " + p("paint.exr"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_coif("style delete @default --clusters c3 c4 --absorption " + p("paint.exr") + " --absorption-out " + p("paint2.exr") +
+                 " -o " + p("fewer.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto fewer = nlohmann::json::parse(std::ifstream(dir / "fewer.json"));
+    EXPECT_EQ(fewer["clusters"].size(), 62u);
+    const AbsorptionMap rows = read_absorption_map(dir / "paint2.exr", 62);
+    EXPECT_EQ(rows.at(8, 0), glm::vec3(0.02f));  // c10's row, two up
+    EXPECT_NE(rows.at(7, 0), glm::vec3(0.02f));
+    r = run_coif("style duplicate " + p("fewer.json") + " --clusters c25 --translate 6 0 0 -o " + p("more.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto more = nlohmann::json::parse(std::ifstream(dir / "more.json"));
+    ASSERT_EQ(more["clusters"].size(), 63u);
+    EXPECT_EQ(more["clusters"][62]["name"], "c25_copy");
+    EXPECT_EQ(more["clusters"][62]["instance_of"], "c25");
+    r = run_coif("style mirror " + p("more.json") + " --clusters c7 c8 --at 0 -o " + p("mirrored.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("mirrored 2 clusters across x = 0"));
+    r = run_coif("style transform " + p("mirrored.json") + " --clusters c7_mirror --rotate-deg 0 20 0 --scale 1.1 -o " + p("moved.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_coif("style set " + p("moved.json") + " --cluster c10 --a 1.2 1 0.8 --point 1 --move 0 0 2 -o " + p("set.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "set.json"))["clusters"][8]["a"].size(), 3u);
+    // The result draws.
+    r = run_coif("render --style " + p("set.json") + " --width 48 --height 32 --samples 1 -o " + p("set.png"));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    // Bad input: a name the style lacks, a map without its output, nothing to set, a bad scale. No file written.
+    r = run_coif("style delete @default --clusters c3 nope -o " + p("bad.json"));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("no cluster is named \"nope\""));
+    r = run_coif("style delete @default --clusters c3 --absorption " + p("paint.exr") + " -o " + p("bad.json"));
+    EXPECT_EQ(r.exit_code, 1);
+    r = run_coif("style set @default --cluster c3 -o " + p("bad.json"));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("nothing to set"));
+    r = run_coif("style transform @default --clusters c3 --scale -1 -o " + p("bad.json"));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir / "bad.json"));
+    fs::remove_all(dir);
+}
+
 TEST(Cli, FailuresExitOneNameTheFileAndWriteNothing) {
     const auto dir = test::scratch_dir("cli-fail");
     std::ofstream(dir / "bad.hair") << "HAIRtruncated";

@@ -1,0 +1,308 @@
+#include "models/style_edit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "models/core/error.h"
+
+namespace coif {
+namespace {
+
+void check_clusters(const HairStyle& style, std::span<const std::size_t> clusters) {
+    std::set<std::size_t> seen;
+    for (const std::size_t c : clusters) {
+        if (c >= style.clusters.size())
+            throw Error::parameter("cluster", std::to_string(c) + " is out of range (the style has " + std::to_string(style.clusters.size()) + ")");
+        if (!seen.insert(c).second) throw Error::parameter("cluster", style.clusters[c].name + " is named twice");
+    }
+}
+
+void check_similarity(const Similarity& s) {
+    const bool finite = std::isfinite(s.scale) && std::isfinite(s.rotation.w) && std::isfinite(s.rotation.x) &&
+                        std::isfinite(s.rotation.y) && std::isfinite(s.rotation.z) && std::isfinite(s.translation.x) &&
+                        std::isfinite(s.translation.y) && std::isfinite(s.translation.z);
+    if (!finite || !(s.scale > 0.0) || std::abs(glm::length(s.rotation) - 1.0) > 1e-6)
+        throw Error::parameter("transform", "must be finite, with a positive scale and a unit rotation");
+}
+
+Similarity inverse(const Similarity& s) {
+    Similarity r;
+    r.scale = 1.0 / s.scale;
+    r.rotation = glm::conjugate(s.rotation);
+    r.translation = -(r.scale * (r.rotation * s.translation));
+    return r;
+}
+
+std::shared_ptr<const GeneralizedCylinder> make_shape(Spline3 trajectory, Spline1 a, Spline1 b, Spline1 theta) {
+    try {
+        return std::make_shared<const GeneralizedCylinder>(std::move(trajectory), std::move(a), std::move(b), std::move(theta));
+    } catch (const std::invalid_argument& e) {
+        throw Error::parameter("cluster shape", e.what());
+    }
+}
+
+Spline1 scaled(const Spline1& s, double k) {
+    std::vector<double> c = s.control();
+    for (double& x : c) x *= k;
+    return Spline1(std::move(c));
+}
+
+// The angle of `d` (in the normal plane) measured from f.normal toward f.binormal.
+double angle_in(const Frame& f, const glm::dvec3& d) { return std::atan2(glm::dot(d, f.binormal), glm::dot(d, f.normal)); }
+
+// g placed by p, as a shape of its own (see the header: θ gains the frames' constant angle).
+std::shared_ptr<const GeneralizedCylinder> placed_shape(const GeneralizedCylinder& g, const Similarity& p) {
+    std::vector<glm::dvec3> points = g.trajectory().control();
+    for (glm::dvec3& x : points) x = p.apply(x);
+    const auto moved = make_shape(Spline3(points), scaled(g.a_spline(), p.scale), scaled(g.b_spline(), p.scale), g.theta_spline());
+    const double phi = angle_in(moved->frame(0.0), p.apply_direction(g.frame(0.0).normal));
+    std::vector<double> theta = g.theta_spline().control();
+    for (double& x : theta) x += phi;
+    return make_shape(Spline3(std::move(points)), scaled(g.a_spline(), p.scale), scaled(g.b_spline(), p.scale), Spline1(std::move(theta)));
+}
+
+// g reflected across x[axis] = at: θ ↦ ψ − θ, and u ↦ −u (the density's business).
+std::shared_ptr<const GeneralizedCylinder> mirrored_shape(const GeneralizedCylinder& g, int axis, double at) {
+    const auto reflect = [&](glm::dvec3 x) {
+        x[axis] = 2.0 * at - x[axis];
+        return x;
+    };
+    std::vector<glm::dvec3> points = g.trajectory().control();
+    for (glm::dvec3& x : points) x = reflect(x);
+    const auto reflected = make_shape(Spline3(points), g.a_spline(), g.b_spline(), g.theta_spline());
+    glm::dvec3 n = g.frame(0.0).normal;
+    n[axis] = -n[axis];
+    const double psi = angle_in(reflected->frame(0.0), n);
+    std::vector<double> theta = g.theta_spline().control();
+    for (double& x : theta) x = psi - x;
+    return make_shape(Spline3(std::move(points)), g.a_spline(), g.b_spline(), Spline1(std::move(theta)));
+}
+
+// A density with the angle around reversed (u ↦ −u): each ring's sectors in reverse order, each grid flipped along s.
+std::shared_ptr<const DensitySource> mirrored_density(const DensitySource& d, const DiskLayout& L) {
+    auto out = std::make_shared<DensitySource>(d);
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    for (StrandRun& run : out->strands)
+        for (glm::dvec2& vu : run.vu) vu.y = vu.y > 0.0 ? kTwoPi - vu.y : 0.0;
+    if (d.kind == DensitySource::Kind::Grids)
+        for (int i = 0; i <= L.s_t; ++i)
+            for (int j = 0; j < L.layers; ++j)
+                for (int k = 0; k < L.s_u; ++k) {
+                    const std::vector<float>& from = d.grids[L.sector_index(i, j, L.s_u - 1 - k)];
+                    std::vector<float>& to = out->grids[L.sector_index(i, j, k)];
+                    for (int r = 0; r < L.grid_r; ++r)
+                        for (int s = 0; s < L.grid_s; ++s)
+                            to[static_cast<std::size_t>(r * L.grid_s + s)] = from[static_cast<std::size_t>(r * L.grid_s + (L.grid_s - 1 - s))];
+                }
+    return out;
+}
+
+std::string unique_name(const HairStyle& style, const std::string& base) {
+    const auto taken = [&](const std::string& n) {
+        return std::any_of(style.clusters.begin(), style.clusters.end(), [&](const Cluster& c) { return c.name == n; });
+    };
+    if (!taken(base)) return base;
+    for (int i = 2;; ++i)
+        if (!taken(base + std::to_string(i))) return base + std::to_string(i);
+}
+
+// The rows that follow the clusters (bone weights, painted absorption) for a new last cluster: `from`'s.
+void append_rows(HairStyle& style, std::size_t from, AbsorptionMap* absorption) {
+    if (style.skinning) style.skinning->clusters.push_back(style.skinning->clusters.at(from));
+    if (absorption) {
+        const std::size_t row = static_cast<std::size_t>(absorption->samples);
+        const auto first = absorption->sigma_a.begin() + static_cast<std::ptrdiff_t>(from * row);
+        const std::vector<glm::vec3> copy(first, first + static_cast<std::ptrdiff_t>(row));
+        absorption->sigma_a.insert(absorption->sigma_a.end(), copy.begin(), copy.end());
+        ++absorption->clusters;
+    }
+}
+
+// A new prototype from `shape` and `density`, with `from`'s rows.
+std::size_t append_prototype(HairStyle& style, std::size_t from, const std::string& name, std::shared_ptr<const GeneralizedCylinder> shape,
+                             std::shared_ptr<const DensitySource> density, AbsorptionMap* absorption) {
+    Cluster c;
+    c.name = unique_name(style, name);
+    c.shape = std::move(shape);
+    c.density = std::move(density);
+    style.clusters.push_back(std::move(c));
+    append_rows(style, from, absorption);
+    return style.clusters.size() - 1;
+}
+
+void check_rows(const HairStyle& style, const AbsorptionMap* absorption) {
+    if (absorption && static_cast<std::size_t>(absorption->clusters) != style.clusters.size())
+        throw Error::parameter("absorption", "the map has " + std::to_string(absorption->clusters) + " rows for " +
+                                                 std::to_string(style.clusters.size()) + " clusters");
+}
+
+// The prototype a cluster's geometry edits go to, and the similarity from its coordinates to the cluster's.
+std::size_t edited_prototype(const HairStyle& style, std::size_t cluster) {
+    if (cluster >= style.clusters.size())
+        throw Error::parameter("cluster", std::to_string(cluster) + " is out of range (the style has " + std::to_string(style.clusters.size()) + ")");
+    return style.clusters[cluster].prototype;
+}
+
+}  // namespace
+
+std::size_t find_cluster(const HairStyle& style, const std::string& name) {
+    for (std::size_t c = 0; c < style.clusters.size(); ++c)
+        if (style.clusters[c].name == name) return c;
+    std::string some;
+    for (std::size_t c = 0; c < style.clusters.size() && c < 4; ++c) some += (c ? ", " : "") + style.clusters[c].name;
+    throw Error::parameter("cluster", "no cluster is named \"" + name + "\" (the style's " + std::to_string(style.clusters.size()) +
+                                          " clusters: " + some + (style.clusters.size() > 4 ? ", …" : "") + ")");
+}
+
+void transform_clusters(HairStyle& style, std::span<const std::size_t> clusters, const Similarity& s) {
+    check_clusters(style, clusters);
+    check_similarity(s);
+    const Similarity inv = inverse(s);
+    for (const std::size_t c : clusters) {  // prototypes: the shape rewritten, their direct instances kept in place
+        if (style.clusters[c].instance_of) continue;
+        style.clusters[c].shape = placed_shape(*style.clusters[c].shape, s);
+        for (Cluster& k : style.clusters)
+            if (k.instance_of == c) k.transform = k.transform.after(inv);
+    }
+    for (const std::size_t c : clusters)
+        if (style.clusters[c].instance_of) style.clusters[c].transform = s.after(style.clusters[c].transform);
+    style.resolve();
+}
+
+std::vector<std::size_t> duplicate_clusters(HairStyle& style, std::span<const std::size_t> clusters, bool as_instances,
+                                            const Similarity& s, AbsorptionMap* absorption) {
+    check_clusters(style, clusters);
+    check_similarity(s);
+    check_rows(style, absorption);
+    std::vector<std::size_t> out;
+    for (const std::size_t c : clusters) {
+        const Cluster& from = style.clusters[c];
+        if (as_instances) {
+            Cluster d;
+            d.name = unique_name(style, from.name + "_copy");
+            d.instance_of = c;
+            d.transform = s;  // its placement: s ∘ the copied cluster's
+            style.clusters.push_back(std::move(d));
+            append_rows(style, c, absorption);
+            out.push_back(style.clusters.size() - 1);
+        } else {
+            auto shape = placed_shape(*from.shape, s.after(from.placement));
+            auto density = std::make_shared<const DensitySource>(*from.density);
+            out.push_back(append_prototype(style, c, from.name + "_copy", std::move(shape), std::move(density), absorption));
+        }
+    }
+    style.resolve();
+    return out;
+}
+
+std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::size_t> clusters, int axis, double at,
+                                         AbsorptionMap* absorption) {
+    check_clusters(style, clusters);
+    check_rows(style, absorption);
+    if (axis < 0 || axis > 2) throw Error::parameter("mirror axis", "must be x, y or z");
+    if (!std::isfinite(at)) throw Error::parameter("mirror plane", "must be finite");
+    std::vector<std::size_t> out;
+    for (const std::size_t c : clusters) {
+        const Cluster& from = style.clusters[c];
+        const auto placed = from.placement.is_identity() ? from.shape : placed_shape(*from.shape, from.placement);
+        out.push_back(append_prototype(style, c, from.name + "_mirror", mirrored_shape(*placed, axis, at),
+                                       mirrored_density(*from.density, style.layout), absorption));
+    }
+    style.resolve();
+    return out;
+}
+
+void delete_clusters(HairStyle& style, std::span<const std::size_t> clusters, AbsorptionMap* absorption) {
+    check_clusters(style, clusters);
+    check_rows(style, absorption);
+    const std::size_t n = style.clusters.size();
+    std::vector<bool> gone(n, false);
+    for (const std::size_t c : clusters) gone[c] = true;
+    if (clusters.size() == n) throw Error::parameter("delete", "it would leave the style with no cluster");
+    // Every kept cluster that names a removed one is re-pointed past it, in place.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t k = 0; k < n; ++k) {
+            Cluster& cl = style.clusters[k];
+            if (gone[k] || !cl.instance_of || !gone[*cl.instance_of]) continue;
+            const std::size_t d = *cl.instance_of;
+            const Cluster& dead = style.clusters[d];
+            if (dead.instance_of) {  // past a removed instance: its transform composed into ours
+                cl.transform = cl.transform.after(dead.transform);
+                cl.instance_of = dead.instance_of;
+            } else {  // a removed prototype: this instance takes its shape, placed where it was, and its other instances
+                const Similarity was = cl.transform;
+                cl.shape = placed_shape(*dead.shape, was);
+                cl.density = dead.density;
+                cl.instance_of.reset();
+                cl.transform = {};
+                const Similarity inv = inverse(was);
+                for (std::size_t m = 0; m < n; ++m)
+                    if (m != k && !gone[m] && style.clusters[m].instance_of == d) {
+                        style.clusters[m].instance_of = k;
+                        style.clusters[m].transform = style.clusters[m].transform.after(inv);
+                    }
+            }
+            changed = true;
+        }
+    }
+    std::vector<std::size_t> index(n, 0);
+    std::vector<Cluster> kept;
+    std::vector<BoneInfluence> kept_bones;
+    std::vector<glm::vec3> kept_rows;
+    for (std::size_t c = 0; c < n; ++c) {
+        if (gone[c]) continue;
+        index[c] = kept.size();
+        kept.push_back(std::move(style.clusters[c]));
+        if (style.skinning) kept_bones.push_back(style.skinning->clusters.at(c));
+        if (absorption)
+            for (int i = 0; i < absorption->samples; ++i) kept_rows.push_back(absorption->at(static_cast<int>(c), i));
+    }
+    for (Cluster& c : kept)
+        if (c.instance_of) c.instance_of = index[*c.instance_of];
+    style.clusters = std::move(kept);
+    if (style.skinning) style.skinning->clusters = std::move(kept_bones);
+    if (absorption) {
+        absorption->sigma_a = std::move(kept_rows);
+        absorption->clusters = static_cast<int>(style.clusters.size());
+    }
+    style.resolve();
+}
+
+void move_control_point(HairStyle& style, std::size_t cluster, std::size_t point, const glm::dvec3& delta) {
+    const std::size_t p = edited_prototype(style, cluster);
+    const GeneralizedCylinder& g = *style.clusters[p].shape;
+    if (point >= g.trajectory().size())
+        throw Error::parameter("control point", std::to_string(point) + " is out of range (the trajectory has " +
+                                                    std::to_string(g.trajectory().size()) + ")");
+    if (!std::isfinite(delta.x) || !std::isfinite(delta.y) || !std::isfinite(delta.z))
+        throw Error::parameter("control point", "the move must be finite");
+    const Similarity& place = style.clusters[cluster].placement;  // the prototype's coordinates → the cluster's
+    std::vector<glm::dvec3> points = g.trajectory().control();
+    points[point] += glm::conjugate(place.rotation) * delta / place.scale;
+    style.clusters[p].shape = make_shape(Spline3(std::move(points)), g.a_spline(), g.b_spline(), g.theta_spline());
+    style.resolve();
+}
+
+void set_profile(HairStyle& style, std::size_t cluster, const std::string& profile, std::span<const double> values) {
+    const std::size_t p = edited_prototype(style, cluster);
+    if (values.empty() || values.size() > kMaxControlPoints)
+        throw Error::parameter(profile, "needs 1.." + std::to_string(kMaxControlPoints) + " control points");
+    const bool radius = profile == "a" || profile == "b";
+    if (!radius && profile != "theta_deg") throw Error::parameter("profile", "\"" + profile + "\" is none of a, b, theta_deg");
+    std::vector<double> c(values.begin(), values.end());
+    for (double& x : c) {
+        if (!std::isfinite(x) || (radius && !(x > 0.0))) throw Error::parameter(profile, radius ? "half-axes must be finite and > 0" : "must be finite");
+        if (!radius) x *= std::numbers::pi / 180.0;
+    }
+    const GeneralizedCylinder& g = *style.clusters[p].shape;
+    style.clusters[p].shape = make_shape(g.trajectory(), profile == "a" ? Spline1(c) : g.a_spline(), profile == "b" ? Spline1(c) : g.b_spline(),
+                                         profile == "theta_deg" ? Spline1(c) : g.theta_spline());
+    style.resolve();
+}
+
+}  // namespace coif

@@ -1,0 +1,58 @@
+#pragma once
+// Editing a cluster hairstyle: the edits of `coif style transform|mirror|duplicate|delete|set` and of the viewer's
+// cluster authoring (issue 20), GL-free. Every edit leaves the style valid and resolved (HairStyle::resolve), moves
+// nothing it was not asked to move, and keeps the rows that follow the clusters in step: the painted absorption map's
+// (models/absorption_map.h, one row per cluster) and the bone weights' (HairStyle::skinning).
+//
+// Exactness. A cluster's envelope is its shape (models/generalized_cylinder.h) placed by its similarity. An instance
+// moves by composing its transform. A prototype's shape is rewritten: its trajectory's and radii's control points go
+// through the similarity, and its twist θ gains the constant angle by which the new rotation-minimizing frame differs
+// from the turned old one (parallel transport commutes with rotations, so that angle is the same all along t), so the
+// new envelope is the old one placed by the similarity to rounding; its instances keep their places (their transforms
+// take the inverse). A mirror image is a new prototype: the reflection keeps rotation-minimizing frames but reverses
+// their handedness, so θ becomes ψ − θ (ψ: where the reflected frame lies in the new one) and the angle around, u,
+// becomes −u, which reverses each ring's sectors and their density grids along s. `models.StyleEdit.*` checks every
+// edit's envelope against the similarity or reflection applied to the old one.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "models/absorption_map.h"
+#include "models/hair_style.h"
+#include "models/similarity.h"
+
+namespace coif {
+
+// Moves `clusters` (indices, each once) by `s` in the style's space. Throws coif::Error::parameter for an index out
+// of range, a repeated one, or a similarity that is not finite with a positive scale.
+void transform_clusters(HairStyle& style, std::span<const std::size_t> clusters, const Similarity& s);
+
+// Copies of `clusters`, appended in their order and moved by `s`: as instances of the cluster copied (they share its
+// geometry and density: the SATF's macro-clusters), or as new prototypes with their own. Names get "_copy" (then a
+// number) until unique. Returns the new clusters' indices; `absorption`, if given, gets their rows copied.
+std::vector<std::size_t> duplicate_clusters(HairStyle& style, std::span<const std::size_t> clusters, bool as_instances,
+                                            const Similarity& s, AbsorptionMap* absorption = nullptr);
+
+// Mirror images of `clusters` across the plane x[axis] = at (axis 0, 1, 2: x, y, z), appended as new prototypes named
+// "_mirror" (the bone weights copied: a character's left and right bones are not known here). Returns their indices.
+std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::size_t> clusters, int axis, double at,
+                                         AbsorptionMap* absorption = nullptr);
+
+// Removes `clusters`. An instance of a removed cluster keeps its place: it is re-pointed past it, and where a removed
+// prototype leaves instances the first of them becomes the prototype (its shape rewritten in place, exactly as
+// above). Throws coif::Error::parameter if nothing would remain.
+void delete_clusters(HairStyle& style, std::span<const std::size_t> clusters, AbsorptionMap* absorption = nullptr);
+
+// The cluster's trajectory control point `point` moved by `delta` in the style's space (an instance's: its
+// prototype's, through its placement, so every instance of that prototype changes with it).
+void move_control_point(HairStyle& style, std::size_t cluster, std::size_t point, const glm::dvec3& delta);
+
+// A cluster's profile replaced: "a", "b" (half-axes, > 0, in the prototype's units) or "theta_deg" (degrees); an
+// instance's edits its prototype's. Throws coif::Error::parameter for an unknown profile, no value, more than
+// kMaxControlPoints, or values that are not finite (or not positive radii).
+void set_profile(HairStyle& style, std::size_t cluster, const std::string& profile, std::span<const double> values);
+
+// The cluster named `name`, or coif::Error::parameter naming it and what the style holds.
+std::size_t find_cluster(const HairStyle& style, const std::string& name);
+
+}  // namespace coif

@@ -1,0 +1,170 @@
+// Editing a cluster hairstyle (models/style_edit.h): each edit moves the envelopes it is asked to move exactly as the
+// similarity or the reflection moves them, and nothing else, and the rows that follow the clusters follow.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
+#include <numbers>
+
+#include "models/core/error.h"
+#include "models/style_edit.h"
+
+namespace coif {
+namespace {
+
+// A curved, twisted prototype with a density grid per sector, an instance of it turned and moved, and a second
+// prototype with strand density.
+HairStyle style() {
+    std::string grids;
+    const int sectors = (2 + 1) * 2 * 4;  // (s_t + 1) · layers · s_u
+    for (int s = 0; s < sectors; ++s) grids += std::string(s ? ", " : "") + "[" + std::to_string(s) + ", 1, 2, 3, 4, 5]";
+    return parse_style(R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 2, "s_t": 2, "s_u": 4, "grid": [3, 2], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [
+        {"name": "curl", "trajectory": [[0, 0, 0], [1, -3, 0.5], [0.5, -6, 2], [2, -9, 1]], "a": [1.0, 1.4], "b": [0.6, 0.5],
+         "theta_deg": [10, 70], "density": {"kind": "grids", "sectors": [)" + grids + R"(]}},
+        {"name": "twin", "instance_of": "curl", "transform": {"scale": 0.8, "rotation": [0.9238795, 0, 0.3826834, 0], "translation": [4, 1, 0]}},
+        {"name": "plain", "trajectory": [[-3, 0, 0], [-3, -5, 1]], "a": [1.0], "b": [0.7], "theta_deg": [0],
+         "density": {"kind": "strands", "strand_weight": 1, "strands": [[0, 0.5, 30, 0.6, 40, 0.7, 50]]}}]})",
+                       "<edit>");
+}
+
+glm::dvec3 at(const HairStyle& s, std::size_t c, double t, double v, double u) {
+    return s.clusters[c].placement.apply(s.clusters[c].shape->point(t, v, u));
+}
+
+// The largest distance between cluster c of `a` moved by `f` and cluster d of `b` with u ↦ g(u), over a grid of (t, v, u).
+template <class F, class G>
+double worst(const HairStyle& a, std::size_t c, const HairStyle& b, std::size_t d, F f, G g) {
+    double w = 0;
+    for (double t = 0; t <= 1.0; t += 0.125)
+        for (double v : {0.3, 1.0})
+            for (double u = 0; u < 2 * std::numbers::pi; u += 0.4) w = std::max(w, glm::distance(f(at(a, c, t, v, u)), at(b, d, t, v, g(u))));
+    return w;
+}
+const auto same_u = [](double u) { return u; };
+const auto unmoved = [](glm::dvec3 x) { return x; };
+
+Similarity turn() {
+    Similarity s;
+    s.scale = 1.3;
+    s.rotation = glm::angleAxis(0.7, glm::normalize(glm::dvec3(0.3, 1.0, -0.4)));
+    s.translation = {2, -1, 3};
+    return s;
+}
+
+// Rounding only: the shapes' tables are fourth-order accurate in double precision (sizes ~10).
+constexpr double kExact = 1e-6;
+
+TEST(StyleEdit, TransformMovesAPrototypeOrAnInstanceByTheSimilarityAndNothingElse) {
+    const HairStyle before = style();
+    const Similarity s = turn();
+    const auto moved = [&](glm::dvec3 x) { return s.apply(x); };
+    HairStyle a = before;
+    const std::size_t curl = 0;
+    transform_clusters(a, std::span(&curl, 1), s);
+    EXPECT_LT(worst(before, 0, a, 0, moved, same_u), kExact);
+    EXPECT_LT(worst(before, 1, a, 1, unmoved, same_u), kExact);  // its instance stays
+    EXPECT_LT(worst(before, 2, a, 2, unmoved, same_u), kExact);
+    HairStyle b = before;
+    const std::size_t both[] = {0, 1};
+    transform_clusters(b, both, s);
+    EXPECT_LT(worst(before, 0, b, 0, moved, same_u), kExact);
+    EXPECT_LT(worst(before, 1, b, 1, moved, same_u), kExact);
+    HairStyle c = before;
+    const std::size_t twin = 1;
+    transform_clusters(c, std::span(&twin, 1), s);
+    EXPECT_LT(worst(before, 1, c, 1, moved, same_u), kExact);
+    EXPECT_LT(worst(before, 0, c, 0, unmoved, same_u), kExact);
+    // The edited style is a valid file.
+    EXPECT_NO_THROW(parse_style(style_to_json(b).dump(), "<edited>"));
+    Similarity bad;
+    bad.scale = -1;
+    EXPECT_THROW(transform_clusters(c, std::span(&twin, 1), bad), Error);
+    const std::size_t twice[] = {1, 1};
+    EXPECT_THROW(transform_clusters(c, twice, s), Error);
+}
+
+TEST(StyleEdit, MirrorMakesTheReflectedEnvelopeWithItsDensityReversedAround) {
+    const HairStyle before = style();
+    AbsorptionMap paint(3, 4, glm::vec3(1.0f));
+    paint.at(1, 2) = glm::vec3(7.0f);
+    HairStyle m = before;
+    const std::size_t which[] = {0, 1, 2};
+    const std::vector<std::size_t> made = mirror_clusters(m, which, 0, 0.5, &paint);
+    ASSERT_EQ(made, (std::vector<std::size_t>{3, 4, 5}));
+    const auto reflect = [](glm::dvec3 x) { return glm::dvec3(1.0 - x.x, x.y, x.z); };
+    const auto reverse = [](double u) { return 2 * std::numbers::pi - u; };
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_LT(worst(before, k, m, made[k], reflect, reverse), kExact) << k;
+    EXPECT_EQ(m.clusters[3].name, "curl_mirror");
+    EXPECT_FALSE(m.clusters[4].instance_of);  // a reflection is no similarity: a prototype of its own
+    // Ring (i, j)'s sectors in reverse order, each grid reversed along s: sector 0's grid [0, 1, 2 | 3, 4, 5] is the
+    // mirror's sector 3's [2, 1, 0 | 5, 4, 3].
+    const DiskLayout& L = m.layout;
+    const std::vector<float>& g = m.clusters[3].density->grids[L.sector_index(0, 0, L.s_u - 1)];
+    EXPECT_EQ(g, (std::vector<float>{2, 1, 0, 5, 4, 3}));
+    EXPECT_NEAR(m.clusters[5].density->strands[0].vu[0].y, 2 * std::numbers::pi - 30 * std::numbers::pi / 180, 1e-9);
+    // The painted rows follow.
+    ASSERT_EQ(paint.clusters, 6);
+    EXPECT_EQ(paint.at(4, 2), glm::vec3(7.0f));
+    EXPECT_NO_THROW(parse_style(style_to_json(m).dump(), "<mirrored>"));
+}
+
+TEST(StyleEdit, DuplicatesAreMovedCopiesAsInstancesOrPrototypes) {
+    const HairStyle before = style();
+    const Similarity s = turn();
+    const auto moved = [&](glm::dvec3 x) { return s.apply(x); };
+    for (const bool instances : {true, false}) {
+        HairStyle d = before;
+        AbsorptionMap paint(3, 2, glm::vec3(1.0f));
+        paint.at(1, 1) = glm::vec3(3.0f);
+        const std::size_t which[] = {1, 2};
+        const std::vector<std::size_t> made = duplicate_clusters(d, which, instances, s, &paint);
+        ASSERT_EQ(made.size(), 2u);
+        EXPECT_LT(worst(before, 1, d, made[0], moved, same_u), kExact) << instances;
+        EXPECT_LT(worst(before, 2, d, made[1], moved, same_u), kExact) << instances;
+        EXPECT_LT(worst(before, 1, d, 1, unmoved, same_u), kExact);
+        EXPECT_EQ(d.clusters[made[0]].name, "twin_copy");
+        EXPECT_EQ(d.clusters[made[0]].instance_of.has_value(), instances);
+        EXPECT_EQ(paint.at(static_cast<int>(made[0]), 1), glm::vec3(3.0f));
+        EXPECT_NO_THROW(parse_style(style_to_json(d).dump(), "<duplicated>"));
+    }
+}
+
+TEST(StyleEdit, DeletingKeepsEveryOtherClusterWhereItWas) {
+    const HairStyle before = style();
+    HairStyle d = before;
+    AbsorptionMap paint(3, 2, glm::vec3(1.0f));
+    paint.at(2, 0) = glm::vec3(5.0f);
+    const std::size_t curl = 0;
+    delete_clusters(d, std::span(&curl, 1), &paint);  // the prototype of "twin": twin takes its shape, in place
+    ASSERT_EQ(d.clusters.size(), 2u);
+    EXPECT_EQ(d.clusters[0].name, "twin");
+    EXPECT_FALSE(d.clusters[0].instance_of);
+    EXPECT_LT(worst(before, 1, d, 0, unmoved, same_u), kExact);
+    EXPECT_LT(worst(before, 2, d, 1, unmoved, same_u), kExact);
+    EXPECT_EQ(paint.clusters, 2);
+    EXPECT_EQ(paint.at(1, 0), glm::vec3(5.0f));
+    EXPECT_NO_THROW(parse_style(style_to_json(d).dump(), "<deleted>"));
+    const std::size_t all[] = {0, 1};
+    EXPECT_THROW(delete_clusters(d, all), Error);
+}
+
+TEST(StyleEdit, ControlPointsAndProfilesEditThePrototype) {
+    HairStyle e = style();
+    const glm::dvec3 root = at(e, 1, 0, 0, 0);
+    // The instance's root control point moved by (0, 0, 1) in the style's space: the instance's root moves so.
+    move_control_point(e, 1, 0, {0, 0, 1});
+    EXPECT_LT(glm::distance(at(e, 1, 0, 0, 0), root + glm::dvec3(0, 0, 1)), 1e-9);
+    const double b[] = {0.9, 0.8, 0.7};
+    set_profile(e, 0, "b", b);
+    EXPECT_NEAR(e.clusters[1].shape->b(1.0), 0.7, 1e-12);  // shared by the instance
+    const double nan[] = {std::nan("")};
+    EXPECT_THROW(set_profile(e, 0, "a", nan), Error);
+    EXPECT_THROW(set_profile(e, 0, "c", b), Error);
+    EXPECT_THROW(move_control_point(e, 0, 9, {0, 0, 1}), Error);
+    EXPECT_EQ(find_cluster(e, "plain"), 2u);
+    EXPECT_THROW((void)find_cluster(e, "none"), Error);
+}
+
+}  // namespace
+}  // namespace coif
