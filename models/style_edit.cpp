@@ -1,6 +1,7 @@
 #include "models/style_edit.h"
 
 #include <algorithm>
+#include <glm/gtc/quaternion.hpp>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -148,6 +149,35 @@ std::size_t edited_prototype(const HairStyle& style, std::size_t cluster) {
 }
 
 }  // namespace
+
+Similarity similarity_about(const HairStyle& style, std::span<const std::size_t> clusters, const glm::dvec3& translate,
+                            const glm::dvec3& rotate_deg, double scale, const glm::dvec3* pivot) {
+    check_clusters(style, clusters);
+    glm::dvec3 p(0.0);
+    if (pivot) p = *pivot;
+    else {
+        for (const std::size_t c : clusters) p += style.clusters[c].placement.apply(style.clusters[c].shape->position(0.0));
+        if (!clusters.empty()) p /= static_cast<double>(clusters.size());
+    }
+    const double k = std::numbers::pi / 180.0;
+    Similarity s;
+    s.scale = scale;
+    s.rotation = glm::angleAxis(k * rotate_deg.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(k * rotate_deg.y, glm::dvec3(0, 1, 0)) *
+                 glm::angleAxis(k * rotate_deg.x, glm::dvec3(1, 0, 0));
+    s.translation = p - scale * (s.rotation * p) + translate;
+    check_similarity(s);
+    return s;
+}
+
+double roots_middle(const HairStyle& style, int axis) {
+    if (axis < 0 || axis > 2) throw Error::parameter("axis", "must be x, y or z");
+    double lo = 1e300, hi = -1e300;
+    for (const Cluster& c : style.clusters) {
+        const double x = c.placement.apply(c.shape->position(0.0))[axis];
+        lo = std::min(lo, x), hi = std::max(hi, x);
+    }
+    return style.clusters.empty() ? 0.0 : 0.5 * (lo + hi);
+}
 
 std::size_t find_cluster(const HairStyle& style, const std::string& name) {
     for (std::size_t c = 0; c < style.clusters.size(); ++c)

@@ -52,6 +52,14 @@ void move_control_point(HairStyle& style, std::size_t cluster, std::size_t point
 // kMaxControlPoints, or values that are not finite (or not positive radii).
 void set_profile(HairStyle& style, std::size_t cluster, const std::string& profile, std::span<const double> values);
 
+// The motion of `coif style transform` and the viewer's: turn by `rotate_deg` (about x, then y, then z), scale by
+// `scale`, both about `pivot` (null: the centre of `clusters`' roots), then translate. Throws coif::Error::parameter
+// for values that are not finite or a scale ≤ 0.
+Similarity similarity_about(const HairStyle& style, std::span<const std::size_t> clusters, const glm::dvec3& translate,
+                            const glm::dvec3& rotate_deg, double scale, const glm::dvec3* pivot = nullptr);
+// The middle of all the clusters' roots along `axis`: the default mirror plane (the head's left-right plane for x).
+double roots_middle(const HairStyle& style, int axis);
+
 // The cluster named `name`, or coif::Error::parameter naming it and what the style holds.
 std::size_t find_cluster(const HairStyle& style, const std::string& name);
 

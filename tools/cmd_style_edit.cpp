@@ -2,7 +2,6 @@
 // (models/style_edit.h), each reading a style and writing the edited one, with the painted absorption map's rows
 // following the clusters when one is given.
 #include <cstdio>
-#include <glm/gtc/quaternion.hpp>
 #include <memory>
 #include <optional>
 
@@ -80,22 +79,9 @@ void add_motion(CLI::App* app, Motion& m) {
 }
 
 coif::Similarity similarity(const Motion& m, const coif::HairStyle& style, const std::vector<std::size_t>& selection) {
-    glm::dvec3 pivot(0.0);
-    if (m.about.size() == 3) pivot = {m.about[0], m.about[1], m.about[2]};
-    else {
-        for (const std::size_t c : selection) pivot += style.clusters[c].placement.apply(style.clusters[c].shape->position(0.0));
-        if (!selection.empty()) pivot /= static_cast<double>(selection.size());
-    }
-    const glm::dquat r = glm::angleAxis(glm::radians(m.rotate_deg[2]), glm::dvec3(0, 0, 1)) *
-                         glm::angleAxis(glm::radians(m.rotate_deg[1]), glm::dvec3(0, 1, 0)) *
-                         glm::angleAxis(glm::radians(m.rotate_deg[0]), glm::dvec3(1, 0, 0));
-    coif::Similarity s;
-    s.scale = m.scale;
-    s.rotation = r;
-    s.translation = pivot - m.scale * (r * pivot) + glm::dvec3(m.translate[0], m.translate[1], m.translate[2]);
-    for (const double v : {s.translation.x, s.translation.y, s.translation.z})
-        if (!std::isfinite(v)) throw coif::Error::parameter("--translate", "the motion must be finite");
-    return s;
+    const glm::dvec3 pivot = m.about.size() == 3 ? glm::dvec3(m.about[0], m.about[1], m.about[2]) : glm::dvec3(0.0);
+    return coif::similarity_about(style, selection, {m.translate[0], m.translate[1], m.translate[2]},
+                                  {m.rotate_deg[0], m.rotate_deg[1], m.rotate_deg[2]}, m.scale, m.about.size() == 3 ? &pivot : nullptr);
 }
 
 void add_style_edits(CLI::App& root) {
@@ -132,16 +118,7 @@ void add_style_edits(CLI::App& root) {
     mirror->callback([mo, axis, at] {
         Loaded l = load(*mo);
         const int a = (*axis)[0] - 'x';
-        double plane = 0.0;
-        if (*at) plane = **at;
-        else {
-            double lo = 1e300, hi = -1e300;
-            for (const coif::Cluster& c : l.style.clusters) {
-                const double x = c.placement.apply(c.shape->position(0.0))[a];
-                lo = std::min(lo, x), hi = std::max(hi, x);
-            }
-            plane = 0.5 * (lo + hi);
-        }
+        const double plane = *at ? **at : coif::roots_middle(l.style, a);
         const auto made = coif::mirror_clusters(l.style, l.selection, a, plane, l.absorption ? &*l.absorption : nullptr);
         char what[96];
         std::snprintf(what, sizeof what, "mirrored %zu clusters across %s = %.6g", made.size(), axis->c_str(), plane);

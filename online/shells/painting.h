@@ -39,6 +39,9 @@ public:
     void clear();
     bool undo();  // false when there is nothing to undo
     bool redo();
+    // The map set as it is, outside the strokes' history (the viewer's history, online/shells/authoring.h, restores
+    // maps this way: a cluster edit adds or removes rows).
+    void replace(std::optional<AbsorptionMap> map) { map_ = std::move(map); }
 
 private:
     std::optional<AbsorptionMap> map_;

@@ -21,6 +21,8 @@
 #include "online/gl.h"
 #include "online/lighting_uniforms.h"
 #include "online/shell_renderer.h"
+#include "models/style_edit.h"
+#include "online/shells/authoring.h"
 #include "online/shells/painting.h"
 #include "online/window/panel.h"
 #include "online/window/window.h"
@@ -63,6 +65,7 @@ constexpr float kExposureStep = 1.0f / 3.0f;  // stops per + / − key
 constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera is dragged
 constexpr float kPanelWidth = 300.0f, kPanelLabels = 130.0f;  // pixels: the panel, and its labels' column
 constexpr int kRefineGrid = 2;      // still: 2 × 2 shifted frames averaged (coif render --samples 4)
+constexpr float kHandleRadius = 5.0f;  // pixels: a control point's handle
 
 struct Input {
     double scroll = 0;                 // wheel steps since the last frame
@@ -94,6 +97,10 @@ public:
           exposure_(o.exposure),
           environment_(o.environment),
           window_(o.view.width, o.view.height, "coif view"),
+          authoring_(o.scene.cooked ? std::nullopt : std::optional<HairStyle>(o.scene.style), o.absorption),
+          framing_(o.scene.framing),
+          lighting_rows_(o.scene.lighting_rows),
+          body_(o.scene.body),
           scene_(scene_desc(o)),
           background_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_background.frag"}),
           present_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_present.frag"}),
@@ -101,7 +108,6 @@ public:
           empty_vao_(make_vertex_array()) {
         camera_.azimuth = o.view.azimuth;
         camera_.elevation = o.view.elevation;
-        painting_ = Painting(o.absorption);  // painting goes on from the given map
         rotation_deg_ = o.rotate_lights_deg;
         unrotated_ = scene_.lights;
         environment_label_ = scene_.lights_label;
@@ -191,7 +197,7 @@ private:
                     if (a.x < 0 || a.y < 0 || a.x >= fb_w || a.y >= fb_h)
                         throw Error::parameter("paint", "the point lies outside the " + std::to_string(fb_w) + "x" +
                                                             std::to_string(fb_h) + " window");
-                    painting_.begin_stroke();
+                    authoring_.begin_stroke();
                     dab(a.x, a.y, Brush{a.radius, a.strength, a.sigma_a});
                     break;
                 }
@@ -208,6 +214,58 @@ private:
                     set_lights();
                     break;
                 case K::frames: break;
+                case K::select: authoring_.select(a.names); break;
+                case K::pick: {
+                    int fb_w, fb_h;
+                    glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+                    authoring_.pick(camera_at(fb_w, fb_h), scene_.renderer->prepared(), a.x, a.y);
+                    break;
+                }
+                case K::drag_point: {
+                    int fb_w, fb_h;
+                    glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+                    authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), a.point, {a.x, a.y}, {a.to_x, a.to_y}, a.axis);
+                    sync();
+                    break;
+                }
+                case K::transform:
+                    authoring_.edit([&](HairStyle& st, AbsorptionMap*) {
+                        const std::vector<std::size_t> sel = selected();
+                        transform_clusters(st, sel, similarity_about(st, sel, a.translate, a.rotate_deg, a.scale));
+                        return sel;
+                    });
+                    sync();
+                    break;
+                case K::duplicate:
+                    authoring_.edit([&](HairStyle& st, AbsorptionMap* map) {
+                        const std::vector<std::size_t> sel = selected();
+                        return duplicate_clusters(st, sel, !a.as_copy, similarity_about(st, sel, a.translate, glm::dvec3(0.0), 1.0), map);
+                    });
+                    sync();
+                    break;
+                case K::mirror:
+                    authoring_.edit([&](HairStyle& st, AbsorptionMap* map) {
+                        return mirror_clusters(st, selected(), a.axis, a.at ? *a.at : roots_middle(st, a.axis), map);
+                    });
+                    sync();
+                    break;
+                case K::remove:
+                    authoring_.edit([&](HairStyle& st, AbsorptionMap* map) {
+                        delete_clusters(st, selected(), map);
+                        return std::vector<std::size_t>{};
+                    });
+                    sync();
+                    break;
+                case K::profile:
+                    authoring_.edit([&](HairStyle& st, AbsorptionMap*) {
+                        const std::vector<std::size_t> sel = selected();
+                        if (sel.size() != 1) throw Error::parameter("profile", "select one cluster to set its profile");
+                        set_profile(st, sel[0], a.profile, a.profile_values);
+                        return sel;
+                    });
+                    sync();
+                    break;
+                case K::save_style: save_style(a.path); break;
             }
         } catch (const Error& e) {
             throw Error(e.file(), e.place(), e.problem() + " (" + a.where + ")");
@@ -246,7 +304,10 @@ private:
                     break;
                 case GLFW_KEY_Y:
                     if (control(w)) redo();
+                    else axis_lock_ = axis_lock_ == 1 ? -1 : 1;
                     break;
+                case GLFW_KEY_X: axis_lock_ = axis_lock_ == 0 ? -1 : 0; break;
+                case GLFW_KEY_DELETE: cluster_edit("delete"); break;
                 default: break;
             }
         }
@@ -259,14 +320,47 @@ private:
         glfwGetCursorPos(w, &x, &y);
         const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
         const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        int win_w, win_h, fb_w, fb_h;
+        glfwGetWindowSize(w, &win_w, &win_h);
+        glfwGetFramebufferSize(w, &fb_w, &fb_h);
+        const glm::dvec2 at(x * fb_w / std::max(win_w, 1), y * fb_h / std::max(win_h, 1));  // framebuffer pixels
+        // Cluster authoring: Alt + click selects the cluster under the cursor; a left drag from one of its control
+        // points' handles moves that point, committed (one edit, one cook) when the button is let go.
+        if (drag_point_ >= 0) {
+            if (!left) {
+                const int point = drag_point_;
+                drag_point_ = -1;
+                try {
+                    authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), point, drag_from_, at, axis_lock_);
+                    sync();
+                    message_.clear();
+                } catch (const Error& e) {
+                    message_ = e.what();
+                }
+            }
+            last_x_ = x, last_y_ = y;
+            return true;
+        }
+        if (left && alt(w)) {
+            if (!picking_) authoring_.pick(camera_at(fb_w, fb_h), scene_.renderer->prepared(), at.x, at.y);
+            picking_ = true;
+            return true;
+        }
+        picking_ = false;
+        if (left && !dragging_ && !control(w) && !shift(w)) {
+            const std::vector<glm::vec2> h = handles(fb_w, fb_h);
+            for (std::size_t i = 0; i < h.size(); ++i)
+                if (glm::distance(glm::dvec2(h[i]), at) <= kHandleRadius + 2) {
+                    drag_point_ = static_cast<int>(i);
+                    drag_from_ = at;
+                    return true;
+                }
+        }
         // Ctrl + left drag paints (one stroke, one undo step), at the cursor, each frame.
         if (left && control(w)) {
-            if (!stroking_) painting_.begin_stroke();
+            if (!stroking_) authoring_.begin_stroke();
             stroking_ = true;
-            int win_w, win_h, fb_w, fb_h;
-            glfwGetWindowSize(w, &win_w, &win_h);
-            glfwGetFramebufferSize(w, &fb_w, &fb_h);
-            dab(x * fb_w / std::max(win_w, 1), y * fb_h / std::max(win_h, 1), brush_);
+            dab(at.x, at.y, brush_);
             dragging_ = false;
             last_x_ = x;
             last_y_ = y;
@@ -280,8 +374,6 @@ private:
                 camera_.azimuth -= kDragRadiansPerPixel * dx;
                 camera_.elevation = std::clamp(camera_.elevation + kDragRadiansPerPixel * dy, -kMaxElevation, kMaxElevation);
             } else {
-                int fb_w, fb_h;
-                glfwGetFramebufferSize(w, &fb_w, &fb_h);
                 camera_.pan += camera_.zoom * glm::dvec2(-dx, dy) / double(std::max(fb_h, 1));
             }
         }
@@ -360,31 +452,135 @@ private:
     static bool control(GLFWwindow* w) {
         return glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
     }
+    static bool alt(GLFWwindow* w) {
+        return glfwGetKey(w, GLFW_KEY_LEFT_ALT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_ALT) == GLFW_PRESS;
+    }
     static bool shift(GLFWwindow* w) {
         return glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     }
 
     // Painting (online/shells/painting.h): the renderer draws the painted map, or σa from the parameters.
     void apply_paint() {
-        scene_.renderer->set_absorption(painting_.map());
+        scene_.renderer->set_absorption(authoring_.map());
         ++version_;
     }
     void undo() {
-        if (painting_.undo()) apply_paint();
+        if (authoring_.undo()) sync();
     }
     void redo() {
-        if (painting_.redo()) apply_paint();
+        if (authoring_.redo()) sync();
     }
     void save_absorption(const std::filesystem::path& path) {
-        if (!painting_.map()) throw Error::parameter("absorption", "nothing is painted yet, so there is no map to save");
-        write_absorption_map(path, *painting_.map());
+        if (!authoring_.map()) throw Error::parameter("absorption", "nothing is painted yet, so there is no map to save");
+        write_absorption_map(path, *authoring_.map());
         result_.written.push_back(path);
     }
+    // Cluster authoring (online/shells/authoring.h): the selection, the style's turn into the shells' space, the shells
+    // cooked again after an edit (only when the style changed: undoing a stroke does not), and saving the style.
+    std::vector<std::size_t> selected() const {
+        if (authoring_.selection().empty()) throw Error::parameter("edit", "no cluster is selected (Alt + click, or a script's select)");
+        return authoring_.selection();
+    }
+    glm::mat3 orientation() const { return authoring_.style() ? style_orientation(*authoring_.style()) : glm::mat3(1.0f); }
+    void sync() {
+        if (authoring_.style() && authoring_.style_version() != cooked_version_) {
+            const auto t0 = Clock::now();
+            const HairStyle& st = *authoring_.style();
+            ShellView v = scene_.view_of(st, framing_, lighting_rows_);
+            scene_.renderer = std::move(v.renderer);  // the camera keeps its framing: an edit does not move the view
+            scene_.style = st;
+            scene_.renderer->set_lights(scene_.lights);
+            if (body_) scene_.renderer->set_body(&*body_, style_orientation(st) * style_source_rotation(st));
+            cooked_version_ = authoring_.style_version();
+            recook_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+            log_message(LogLevel::info, "coif view: cooked the edited style in " + std::to_string(static_cast<int>(recook_ms_)) + " ms");
+        }
+        apply_paint();
+    }
+    void save_style(const std::filesystem::path& path) {
+        if (!authoring_.style()) throw Error::parameter("style", "a baked asset is view-only: there is no style to save");
+        write_style(path, *authoring_.style());
+        result_.written.push_back(path);
+    }
+
+    // The selected cluster's trajectory control points, in framebuffer pixels (top-left origin): the drag handles.
+    std::vector<glm::vec2> handles(int width, int height) const {
+        std::vector<glm::vec2> out;
+        if (!authoring_.style() || authoring_.selection().size() != 1) return out;
+        const Cluster& c = authoring_.style()->clusters[authoring_.selection()[0]];
+        const Camera cam = camera_at(width, height);
+        const glm::mat4 vp = cam.projection() * cam.view();
+        const glm::mat3 turn = orientation();
+        for (const glm::dvec3& p : authoring_.style()->clusters[c.prototype].shape->trajectory().control()) {
+            const glm::vec4 clip = vp * glm::vec4(turn * glm::vec3(c.placement.apply(p)), 1.0f);
+            if (clip.w <= 0.0f) continue;
+            out.emplace_back((0.5f + 0.5f * clip.x / clip.w) * float(width), (0.5f - 0.5f * clip.y / clip.w) * float(height));
+        }
+        return out;
+    }
+
+    // The panel's and the keys' edits of the selection; a refusal is shown, not thrown.
+    void cluster_edit(const std::string& what) {
+        try {
+            authoring_.edit([&](HairStyle& st, AbsorptionMap* map) -> std::vector<std::size_t> {
+                const std::vector<std::size_t> sel = selected();
+                if (what == "delete") {
+                    delete_clusters(st, sel, map);
+                    return {};
+                }
+                if (what == "mirror") return mirror_clusters(st, sel, 0, roots_middle(st, 0), map);
+                // A copy beside the original: moved by its cluster's mean half-axis along x.
+                const double step = 2.0 * st.clusters[sel[0]].placement.scale * st.clusters[sel[0]].shape->a(0.5);
+                return duplicate_clusters(st, sel, true, similarity_about(st, sel, {step, 0.0, 0.0}, glm::dvec3(0.0), 1.0), map);
+            });
+            sync();
+            message_.clear();
+        } catch (const Error& e) {
+            message_ = e.what();
+        }
+    }
+
+    // The panel's cluster section, and the handles drawn over the picture.
+    void clusters_panel(int width, int height) {
+        const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+        ImDrawList* overlay = ImGui::GetForegroundDrawList();
+        for (const glm::vec2 h : handles(width * (dragging_ ? kDragDivisor : 1), height * (dragging_ ? kDragDivisor : 1)))
+            overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
+        if (!ImGui::CollapsingHeader("clusters (Alt + click selects)")) return;
+        if (!authoring_.style()) {
+            ImGui::TextWrapped("a baked asset is view-only: open its style to edit clusters");
+            return;
+        }
+        std::string names;
+        for (const std::size_t c : authoring_.selection()) names += (names.empty() ? "" : ", ") + authoring_.style()->clusters[c].name;
+        ImGui::TextWrapped("selected: %s", names.empty() ? "none" : names.c_str());
+        ImGui::TextWrapped("drag a handle to move a control point; X / Y lock the drag to an axis (%s)",
+                           axis_lock_ < 0 ? "free" : axis_lock_ == 0 ? "x" : "y");
+        if (ImGui::Button("duplicate")) cluster_edit("duplicate");
+        ImGui::SameLine();
+        if (ImGui::Button("mirror (x)")) cluster_edit("mirror");
+        ImGui::SameLine();
+        if (ImGui::Button("delete (Del)")) cluster_edit("delete");
+        if (ImGui::Button("undo (Ctrl+Z)##clusters")) undo();
+        ImGui::SameLine();
+        if (ImGui::Button("redo (Ctrl+Y)##clusters")) redo();
+        ImGui::InputText("style file", style_path_, sizeof style_path_);
+        if (ImGui::Button("save style")) {
+            try {
+                save_style(style_path_);
+                message_ = std::string("saved ") + style_path_ + " (coif render --style)";
+            } catch (const Error& e) {
+                message_ = e.what();
+            }
+        }
+        if (recook_ms_ > 0) ImGui::Text("last edit cooked in %.0f ms", recook_ms_);
+    }
+
     // One dab at window pixel (x, y), top-left origin.
     void dab(double x, double y, const Brush& brush) {
         int fb_w, fb_h;
         glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
-        if (painting_.dab(camera_at(fb_w, fb_h), scene_.renderer->prepared(), x, y, brush, settings_.hair.fibre.sigma_a))
+        if (authoring_.painting().dab(camera_at(fb_w, fb_h), scene_.renderer->prepared(), x, y, brush, settings_.hair.fibre.sigma_a))
             apply_paint();
     }
 
@@ -400,8 +596,9 @@ private:
         ImGui::SameLine();
         if (ImGui::Button("redo (Ctrl+Y)")) redo();
         ImGui::SameLine();
-        if (ImGui::Button("clear") && painting_.map()) {
-            painting_.clear();
+        if (ImGui::Button("clear") && authoring_.map()) {
+            authoring_.begin_stroke();
+            authoring_.painting().replace(std::nullopt);
             apply_paint();
         }
         ImGui::InputText("map file", absorption_path_, sizeof absorption_path_);
@@ -413,7 +610,7 @@ private:
                 message_ = e.what();
             }
         }
-        if (painting_.map()) ImGui::TextWrapped("painted: the map's σa replaces sigma_a below");
+        if (authoring_.map()) ImGui::TextWrapped("painted: the map's σa replaces sigma_a below");
     }
 
     // The S key and the panel's button: a screenshot that, failing, says why and lets the viewer go on.
@@ -456,6 +653,7 @@ private:
         environment_panel();
         colour_panel();
         paint_panel();
+        clusters_panel(width, height);
         if (ImGui::CollapsingHeader("parameters (--params)", ImGuiTreeNodeFlags_DefaultOpen)) {
             ShellSettings edited = settings_;
             bool changed = false;
@@ -741,9 +939,19 @@ private:
     int map_choice_ = 0, fit_count_ = 40;
     std::optional<LightsJob> fit_;
     float eumelanin_ = 1.3f, pheomelanin_ = 0.0f;
-    Painting painting_;
+    Authoring authoring_;           // the style edited, the selection, the painting, and their one undo history
+    SceneFraming framing_;          // the scene's, to cook an edited style as it was cooked
+    int lighting_rows_ = 0;
+    std::optional<BodyMesh> body_;  // the scene's body, set again on an edited style's renderer
+    std::uint64_t cooked_version_ = 0;  // authoring_.style_version() of the style the renderer draws
+    double recook_ms_ = 0;          // the last edit's cooking
+    int drag_point_ = -1;           // the control point the mouse drags (−1: none), from (drag_from_)
+    glm::dvec2 drag_from_{0.0};
+    int axis_lock_ = -1;            // X, Y, Z keys: drags along that axis only
+    char style_path_[512] = "style.json";
     Brush brush_;
     bool stroking_ = false;  // Ctrl + left button held: one stroke
+    bool picking_ = false;   // Alt + left button held: one pick
     char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
     Program background_, present_, copy_;  // the environment, the display pass, the refinement's adds

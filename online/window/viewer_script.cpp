@@ -143,9 +143,92 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
         } else if (key == "capture") {
             act.kind = K::capture;
             act.path = image_path(v, file, at, false);
+        } else if (key == "select") {
+            act.kind = K::select;
+            if (!v.is_array()) throw Error(file, at, "expected an array of cluster names");
+            for (const auto& n : v) {
+                if (!n.is_string()) throw Error(file, at, "expected cluster names");
+                act.names.push_back(n.get<std::string>());
+            }
+        } else if (key == "pick") {
+            act.kind = K::pick;
+            if (!v.is_array() || v.size() != 2) throw Error(file, at, "expected [X, Y]");
+            act.x = number(v[0], file, at, 0, 16384);
+            act.y = number(v[1], file, at, 0, 16384);
+        } else if (key == "drag_point") {
+            act.kind = K::drag_point;
+            if (!v.is_object() || !v.contains("point") || !v.contains("from") || !v.contains("to"))
+                throw Error(file, at, "expected {\"point\": I, \"from\": [X, Y], \"to\": [X, Y], \"axis\": …}");
+            for (const auto& [k, x] : v.items()) {
+                if (k == "point") {
+                    act.point = static_cast<int>(number(x, file, at + "/point", 0, 4095));
+                    if (x.get<double>() != act.point) throw Error(file, at + "/point", "expected a whole number");
+                } else if (k == "from" || k == "to") {
+                    if (!x.is_array() || x.size() != 2) throw Error(file, at + "/" + k, "expected [X, Y]");
+                    (k == "from" ? act.x : act.to_x) = number(x[0], file, at + "/" + k, 0, 16384);
+                    (k == "from" ? act.y : act.to_y) = number(x[1], file, at + "/" + k, 0, 16384);
+                } else if (k == "axis") {
+                    if (x == "view") act.axis = -1;
+                    else if (x == "x" || x == "y" || x == "z") act.axis = x.get<std::string>()[0] - 'x';
+                    else throw Error(file, at + "/axis", "expected view, x, y or z");
+                } else {
+                    throw Error(file, at, "unknown key '" + k + "' (point, from, to, axis)");
+                }
+            }
+        } else if (key == "transform" || key == "duplicate") {
+            act.kind = key == "transform" ? K::transform : K::duplicate;
+            if (!v.is_object()) throw Error(file, at, "expected an object");
+            const auto vec3 = [&](const nlohmann::json& x, const std::string& where, double lim) {
+                if (!x.is_array() || x.size() != 3) throw Error(file, where, "expected three numbers");
+                return glm::dvec3(number(x[0], file, where, -lim, lim), number(x[1], file, where, -lim, lim), number(x[2], file, where, -lim, lim));
+            };
+            for (const auto& [k, x] : v.items()) {
+                if (k == "translate") act.translate = vec3(x, at + "/translate", 1e6);
+                else if (k == "rotate_deg" && key == "transform") act.rotate_deg = vec3(x, at + "/rotate_deg", 3600);
+                else if (k == "scale" && key == "transform") act.scale = number(x, file, at + "/scale", 1e-3, 1e3);
+                else if (k == "as_copy" && key == "duplicate") {
+                    if (!x.is_boolean()) throw Error(file, at + "/as_copy", "expected true or false");
+                    act.as_copy = x.get<bool>();
+                } else {
+                    throw Error(file, at, "unknown key '" + k + "' (" + (key == "transform" ? "translate, rotate_deg, scale" : "translate, as_copy") + ")");
+                }
+            }
+        } else if (key == "mirror") {
+            act.kind = K::mirror;
+            act.axis = 0;
+            if (!v.is_object()) throw Error(file, at, "expected {\"axis\": \"x\", \"at\": X}");
+            for (const auto& [k, x] : v.items()) {
+                if (k == "axis") {
+                    if (x != "x" && x != "y" && x != "z") throw Error(file, at + "/axis", "expected x, y or z");
+                    act.axis = x.get<std::string>()[0] - 'x';
+                } else if (k == "at") {
+                    act.at = number(x, file, at + "/at", -1e6, 1e6);
+                } else {
+                    throw Error(file, at, "unknown key '" + k + "' (axis, at)");
+                }
+            }
+        } else if (key == "delete") {
+            act.kind = K::remove;
+            if (v != true) throw Error(file, at, "expected true");
+        } else if (key == "profile") {
+            act.kind = K::profile;
+            if (!v.is_object() || v.size() != 1 || !v.begin().value().is_array() || v.begin().value().empty())
+                throw Error(file, at, "expected {\"a\" | \"b\" | \"theta_deg\": [V, …]}");
+            act.profile = v.begin().key();
+            if (act.profile != "a" && act.profile != "b" && act.profile != "theta_deg")
+                throw Error(file, at, "unknown profile '" + act.profile + "' (a, b, theta_deg)");
+            const bool radius = act.profile != "theta_deg";
+            for (const auto& x : v.begin().value()) act.profile_values.push_back(number(x, file, at + "/" + act.profile, radius ? 1e-9 : -36000, radius ? 1e6 : 36000));
+        } else if (key == "save_style") {
+            act.kind = K::save_style;
+            if (!v.is_string() || v.get<std::string>().empty()) throw Error(file, at, "expected a file name");
+            act.path = v.get<std::string>();
+            if (act.path.extension() != ".json") throw Error(file, at, "the style must be a .json, not '" + act.path.string() + "'");
         } else {
             throw Error(file, place, "unknown action '" + key +
-                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo, save_absorption, frames, screenshot, capture)");
+                                         "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo, "
+                                         "save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, delete, "
+                                         "profile, save_style)");
         }
         actions.push_back(std::move(act));
     }

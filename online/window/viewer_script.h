@@ -25,9 +25,25 @@
 //   {"screenshot": "FILE.png|.exr"}         write what `coif render` writes for this camera and these parameters
 //   {"capture": "FILE.png"}                 write the window's pixels as shown, the panel included when shown
 //   {"panel": true|false}                   show or hide the panel
+// Cluster authoring (a style's, not a baked asset's: models/style_edit.h, as `coif style transform|…` does them); each
+// edit is one undo step with the strokes, and the shells are cooked again:
+//   {"select": ["c3", …]}                   select clusters by name ([]: none)
+//   {"pick": [X, Y]}                        select the cluster under window pixel (X, Y) (none there: none)
+//   {"drag_point": {"point": I, "from": [X, Y], "to": [X, Y], "axis": "view"|"x"|"y"|"z"}}
+//                                           drag the selected cluster's trajectory control point I: it moves with the
+//                                           cursor in the plane facing the camera through it ("view", the default), or
+//                                           along one axis only
+//   {"transform": {"translate": [X, Y, Z], "rotate_deg": [X, Y, Z], "scale": S}}   the selection moved (each key
+//                                           optional; turned and scaled about the centre of its roots)
+//   {"duplicate": {"translate": [X, Y, Z], "as_copy": false}}   copies of the selection, moved; they become the selection
+//   {"mirror": {"axis": "x", "at": X}}      mirror images of the selection (at: default the middle of the roots)
+//   {"delete": true}                        the selection removed
+//   {"profile": {"a"|"b"|"theta_deg": [V, …]}}   the selected cluster's profile's control points
+//   {"save_style": "FILE.json"}             the edited style, as `coif render --style` reads it
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,7 +52,8 @@ namespace coif::gl {
 struct ViewerAction {
     enum class Kind {
         orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo,
-        save_absorption, frames, screenshot, capture
+        save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, remove,
+        profile, save_style
     };
     Kind kind = Kind::frames;
     double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), rotate_lights (x), frames (x)
@@ -47,6 +64,17 @@ struct ViewerAction {
     nlohmann::json values;          // set: the parameters' keys and values
     std::filesystem::path path;     // params, env, save_absorption, screenshot, capture
     std::string where;              // "FILE: action N" for messages
+    // Cluster authoring.
+    std::vector<std::string> names;          // select
+    double to_x = 0, to_y = 0;               // drag_point: from (x, y) to (to_x, to_y)
+    int point = 0;                           // drag_point
+    int axis = -1;                           // drag_point (−1: the view plane), mirror: 0, 1, 2 = x, y, z
+    std::optional<double> at;                // mirror's plane
+    glm::dvec3 translate{0.0}, rotate_deg{0.0};
+    double scale = 1.0;                      // transform, duplicate
+    bool as_copy = false;                    // duplicate
+    std::string profile;                     // profile: a, b or theta_deg
+    std::vector<double> profile_values;
 };
 
 // Reads and checks a script; throws coif::Error naming the file and the action (unknown actions, values out of

@@ -1,0 +1,107 @@
+#include "online/shells/authoring.h"
+
+#include "models/core/error.h"
+#include "models/style_edit.h"
+#include "online/shells/shell_pick.h"
+
+namespace coif {
+
+Authoring::Authoring(std::optional<HairStyle> style, std::optional<AbsorptionMap> map) : painting_(std::move(map)) {
+    if (style) style_ = std::make_shared<const HairStyle>(std::move(*style));
+}
+
+Authoring::Snapshot Authoring::current() const {
+    return {style_, painting_.map() ? std::optional<AbsorptionMap>(*painting_.map()) : std::nullopt};
+}
+
+void Authoring::restore(Snapshot s) {
+    if (s.style != style_) ++style_version_;
+    style_ = std::move(s.style);
+    painting_.replace(std::move(s.map));
+    std::erase_if(selection_, [&](std::size_t c) { return !style_ || c >= style_->clusters.size(); });
+}
+
+void Authoring::select(const std::vector<std::string>& names) {
+    if (!style_ && !names.empty()) throw Error::parameter("select", "a baked asset is view-only: open its style to edit it");
+    std::vector<std::size_t> s;
+    for (const std::string& n : names) s.push_back(find_cluster(*style_, n));
+    selection_ = std::move(s);
+}
+
+bool Authoring::pick(const Camera& camera, const PreparedShells& shells, double x, double y) {
+    glm::vec3 origin, direction;
+    camera.ray(static_cast<float>(x), static_cast<float>(y), origin, direction);
+    const std::optional<ShellHit> hit = pick_shells(shells, origin, direction);
+    selection_.clear();
+    if (hit && hit->cluster >= 0) selection_.push_back(static_cast<std::size_t>(hit->cluster));
+    return !selection_.empty();
+}
+
+void Authoring::edit(const Edit& f) {
+    if (!style_) throw Error::parameter("edit", "a baked asset is view-only: open its style to edit it");
+    HairStyle style = *style_;
+    std::optional<AbsorptionMap> map = painting_.map() ? std::optional<AbsorptionMap>(*painting_.map()) : std::nullopt;
+    std::vector<std::size_t> selected = f(style, map ? &*map : nullptr);  // throws: nothing changed
+    // What its file holds (models/hair_style.h rounds control points): what is drawn is what is saved.
+    style = parse_style(style_text(style), style.name);
+    undo_.push_back(current());
+    redo_.clear();
+    restore({std::make_shared<const HairStyle>(std::move(style)), std::move(map)});
+    if (!selected.empty()) selection_ = std::move(selected);
+}
+
+void Authoring::drag_point(const Camera& camera, const glm::mat3& orientation, int point, glm::dvec2 from, glm::dvec2 to, int axis) {
+    if (!style_) throw Error::parameter("drag", "a baked asset is view-only: open its style to edit it");
+    if (selection_.size() != 1) throw Error::parameter("drag", "select one cluster to drag its control points");
+    const std::size_t c = selection_[0];
+    const Cluster& cl = style_->clusters[c];
+    const auto& control = style_->clusters[cl.prototype].shape->trajectory().control();
+    if (point < 0 || static_cast<std::size_t>(point) >= control.size())
+        throw Error::parameter("drag", "control point " + std::to_string(point) + " of " + cl.name + "'s " +
+                                           std::to_string(control.size()));
+    // The point in the shells' space, and the plane facing the camera through it.
+    const glm::vec3 q = orientation * glm::vec3(cl.placement.apply(control[static_cast<std::size_t>(point)]));
+    const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+    const auto on_plane = [&](glm::dvec2 px) {
+        glm::vec3 o, d;
+        camera.ray(static_cast<float>(px.x), static_cast<float>(px.y), o, d);
+        const float along = glm::dot(d, forward);
+        if (std::abs(along) < 1e-6f) throw Error::parameter("drag", "the cursor's ray runs along the view plane");
+        return o + d * (glm::dot(q - o, forward) / along);
+    };
+    glm::vec3 delta = on_plane(to) - on_plane(from);
+    if (axis >= 0 && axis <= 2) {
+        glm::vec3 e(0.0f);
+        e[axis] = 1.0f;
+        delta = glm::dot(delta, e) * e;
+    }
+    const glm::dvec3 in_style = glm::dvec3(glm::transpose(orientation) * delta);  // a rotation: its inverse
+    edit([&](HairStyle& s, AbsorptionMap*) {
+        move_control_point(s, c, static_cast<std::size_t>(point), in_style);
+        return std::vector<std::size_t>{c};
+    });
+}
+
+void Authoring::begin_stroke() {
+    undo_.push_back(current());
+    redo_.clear();
+    painting_.begin_stroke();
+}
+
+bool Authoring::undo() {
+    if (undo_.empty()) return false;
+    redo_.push_back(current());
+    restore(std::move(undo_.back()));
+    undo_.pop_back();
+    return true;
+}
+
+bool Authoring::redo() {
+    if (redo_.empty()) return false;
+    undo_.push_back(current());
+    restore(std::move(redo_.back()));
+    redo_.pop_back();
+    return true;
+}
+
+}  // namespace coif

@@ -1,0 +1,67 @@
+#pragma once
+// The viewer's cluster authoring, GL-free (issue 20): the style being edited, the clusters selected, the painted
+// absorption map, and one undo history for both the paint strokes and the cluster edits (models/style_edit.h). Each
+// edit or stroke is one step; undo and redo restore the style and the map exactly as they were (snapshots: a style's
+// clusters share their shapes and densities, so a snapshot costs the cluster list). The viewer (online/window/)
+// cooks the shells again when style_version() changes.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/core/camera.h"
+#include "models/hair_style.h"
+#include "online/shells/painting.h"
+#include "online/shells/prepared_shells.h"
+
+namespace coif {
+
+class Authoring {
+public:
+    // `style`: the style drawn (none: a baked asset, view-only: every edit is refused); `map`: painted σa to start from.
+    Authoring(std::optional<HairStyle> style, std::optional<AbsorptionMap> map);
+
+    const HairStyle* style() const { return style_.get(); }
+    std::uint64_t style_version() const { return style_version_; }  // changes with every edit, undo or redo of the style
+    Painting& painting() { return painting_; }
+    const AbsorptionMap* map() const { return painting_.map(); }
+
+    const std::vector<std::size_t>& selection() const { return selection_; }
+    // By name (coif::Error::parameter naming an unknown one), or the cluster under image pixel (x, y) of `camera`
+    // (shells: as drawn; nothing there: none). Returns whether a cluster was picked.
+    void select(const std::vector<std::string>& names);
+    bool pick(const Camera& camera, const PreparedShells& shells, double x, double y);
+
+    // An edit of the style (and of the map's rows), one undo step: `f` gets copies of the style and of the map, and
+    // the edited style is then made what its file holds (write_style's rounding), so that the viewer draws what it
+    // saves. The
+    // selection becomes `f`'s return (empty: kept where still valid). Throws coif::Error::parameter when the drawing is
+    // view-only, or what `f` throws (then nothing changed).
+    using Edit = std::function<std::vector<std::size_t>(HairStyle&, AbsorptionMap*)>;
+    void edit(const Edit& f);
+    // The selected cluster's trajectory control point `point` dragged from image pixel `from` to `to` of `camera`: in
+    // the plane facing the camera through the point (axis −1), or along the shells' axis 0, 1, 2 only. `orientation`
+    // turns the style into the shells' space (style_orientation). One undo step; throws unless one cluster is selected.
+    void drag_point(const Camera& camera, const glm::mat3& orientation, int point, glm::dvec2 from, glm::dvec2 to, int axis);
+    // A paint stroke starts: one undo step.
+    void begin_stroke();
+    bool undo();  // false when there is nothing to undo
+    bool redo();
+
+private:
+    struct Snapshot {
+        std::shared_ptr<const HairStyle> style;
+        std::optional<AbsorptionMap> map;
+    };
+    Snapshot current() const;
+    void restore(Snapshot s);
+    std::shared_ptr<const HairStyle> style_;
+    std::uint64_t style_version_ = 0;
+    Painting painting_;
+    std::vector<std::size_t> selection_;
+    std::vector<Snapshot> undo_, redo_;
+};
+
+}  // namespace coif
