@@ -1,5 +1,7 @@
 #include "online/shells/authoring.h"
 
+#include <algorithm>
+
 #include "models/core/error.h"
 #include "models/style_edit.h"
 #include "online/shells/shell_pick.h"
@@ -28,13 +30,17 @@ void Authoring::select(const std::vector<std::string>& names) {
     selection_ = std::move(s);
 }
 
-bool Authoring::pick(const Camera& camera, const PreparedShells& shells, double x, double y) {
+bool Authoring::pick(const Camera& camera, const PreparedShells& shells, double x, double y, bool add) {
     glm::vec3 origin, direction;
     camera.ray(static_cast<float>(x), static_cast<float>(y), origin, direction);
     const std::optional<ShellHit> hit = pick_shells(shells, origin, direction);
-    selection_.clear();
-    if (hit && hit->cluster >= 0) selection_.push_back(static_cast<std::size_t>(hit->cluster));
-    return !selection_.empty();
+    if (!add) selection_.clear();
+    if (!hit || hit->cluster < 0) return false;
+    const std::size_t c = static_cast<std::size_t>(hit->cluster);
+    const auto it = std::find(selection_.begin(), selection_.end(), c);
+    if (it == selection_.end()) selection_.push_back(c);
+    else if (add) selection_.erase(it);
+    return true;
 }
 
 void Authoring::edit(const Edit& f) {

@@ -31,8 +31,9 @@ public:
     const std::vector<std::size_t>& selection() const { return selection_; }
     // By name (coif::Error::parameter naming an unknown one), or the cluster under image pixel (x, y) of `camera`
     // (shells: as drawn; nothing there: none). Returns whether a cluster was picked.
+    // With `add`, the picked cluster joins the selection (or leaves it, when it was in it).
     void select(const std::vector<std::string>& names);
-    bool pick(const Camera& camera, const PreparedShells& shells, double x, double y);
+    bool pick(const Camera& camera, const PreparedShells& shells, double x, double y, bool add = false);
 
     // An edit of the style (and of the map's rows), one undo step: `f` gets copies of the style and of the map, and
     // the edited style is then made what its file holds (write_style's rounding), so that the viewer draws what it

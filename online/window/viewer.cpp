@@ -342,7 +342,7 @@ private:
             return true;
         }
         if (left && alt(w)) {
-            if (!picking_) authoring_.pick(camera_at(fb_w, fb_h), scene_.renderer->prepared(), at.x, at.y);
+            if (!picking_) authoring_.pick(camera_at(fb_w, fb_h), scene_.renderer->prepared(), at.x, at.y, shift(w));
             picking_ = true;
             return true;
         }
@@ -547,6 +547,7 @@ private:
         for (const glm::vec2 h : handles(width * (dragging_ ? kDragDivisor : 1), height * (dragging_ ? kDragDivisor : 1)))
             overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
         if (!ImGui::CollapsingHeader("clusters (Alt + click selects)")) return;
+        ImGui::TextWrapped("Alt + Shift + click adds or removes a cluster");
         if (!authoring_.style()) {
             ImGui::TextWrapped("a baked asset is view-only: open its style to edit clusters");
             return;

@@ -7,7 +7,12 @@
 // Mouse and keys: left drag orbits, right drag (or Shift + left drag) pans, the wheel zooms; F frames the hair
 // again, B switches the environment background, + and − change the exposure by a third of a stop, S writes a
 // screenshot (what `coif render` writes for this camera: --screenshot, else coif-view-N.png), Tab hides the panel,
-// Esc or Q quits. The panel (Dear ImGui) edits every parameter of `coif render --params` (saved to and loaded from
+// Esc or Q quits. Ctrl + left drag paints absorption. Cluster authoring (a style's; online/shells/authoring.h): Alt +
+// click selects the cluster under the cursor (Alt + Shift + click adds or removes one), a left drag from one of its
+// control points' handles moves that point in the plane facing the camera (X or Y: along that axis only), Delete
+// removes the selection, and the panel's "clusters" section duplicates, mirrors, deletes and saves the style. Ctrl + Z
+// and Ctrl + Y undo and redo strokes and edits alike. An edited style is cooked again in full (0.7–1.0 s for the
+// default style on llvmpipe's machine; the view keeps its framing). The panel (Dear ImGui) edits every parameter of `coif render --params` (saved to and loaded from
 // that file), the hair's colour as melanin concentrations, the exposure, and the environment: its turn, and a map
 // from `maps_folder` fitted with a chosen number of SRBF lights in the background while the viewer goes on (quitting
 // during a fit waits for it to end).

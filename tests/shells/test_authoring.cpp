@@ -1,0 +1,87 @@
+// The viewer's cluster authoring without a window (online/shells/authoring.h): one history for edits and strokes,
+// restoring the style and the map exactly; a dragged control point follows the cursor in the plane facing the camera.
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "models/style_edit.h"
+#include "online/shells/authoring.h"
+
+namespace coif {
+namespace {
+
+HairStyle two() {
+    return parse_style(R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 2, "s_t": 2, "s_u": 4, "grid": [2, 2], "mesh": [1, 1], "gaussian_width": 0.05},
+      "clusters": [{"name": "left", "trajectory": [[-3, 0, 0], [-3, -5, 0], [-3, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}},
+                   {"name": "right", "trajectory": [[3, 0, 0], [3, -5, 0], [3, -10, 0]], "a": [1.0], "b": [1.0],
+                    "theta_deg": [0], "density": {"kind": "uniform", "value": 0.5}}]})",
+                       "<two>");
+}
+
+TEST(Authoring, EditsAndStrokesShareOneHistoryThatRestoresExactly) {
+    Authoring a(two(), AbsorptionMap(2, 4, glm::vec3(1.0f)));
+    const std::string start = style_text(*a.style());
+    const std::uint64_t v0 = a.style_version();
+    a.select({"right"});
+    a.edit([](HairStyle& s, AbsorptionMap* map) { return mirror_clusters(s, std::vector<std::size_t>{1}, 0, 0.0, map); });
+    EXPECT_EQ(a.style()->clusters.size(), 3u);
+    EXPECT_EQ(a.map()->clusters, 3);
+    EXPECT_EQ(a.selection(), std::vector<std::size_t>{2});  // the new cluster
+    EXPECT_NE(a.style_version(), v0);
+    // A stroke after it: the map changes, the style does not.
+    a.begin_stroke();
+    a.painting().replace(AbsorptionMap(3, 4, glm::vec3(2.0f)));
+    const std::uint64_t v1 = a.style_version();
+    ASSERT_TRUE(a.undo());  // the stroke: the style stays, the map is back
+    EXPECT_EQ(a.style_version(), v1);
+    EXPECT_EQ(a.map()->at(2, 0), glm::vec3(1.0f));
+    ASSERT_TRUE(a.undo());  // the mirror
+    EXPECT_EQ(style_text(*a.style()), start);
+    EXPECT_EQ(a.map()->clusters, 2);
+    EXPECT_TRUE(a.selection().empty());  // cluster 2 is gone
+    EXPECT_FALSE(a.undo());
+    ASSERT_TRUE(a.redo());
+    ASSERT_TRUE(a.redo());
+    EXPECT_EQ(a.style()->clusters.size(), 3u);
+    EXPECT_EQ(a.map()->at(2, 0), glm::vec3(2.0f));
+    // A failed edit changes nothing and adds no step.
+    EXPECT_THROW(a.edit([](HairStyle& s, AbsorptionMap* map) {
+        delete_clusters(s, std::vector<std::size_t>{0, 1, 2}, map);
+        return std::vector<std::size_t>{};
+    }), Error);
+    EXPECT_EQ(a.style()->clusters.size(), 3u);
+    EXPECT_FALSE(a.redo());
+    // A baked asset is view-only.
+    Authoring view_only(std::nullopt, std::nullopt);
+    EXPECT_THROW(view_only.edit([](HairStyle&, AbsorptionMap*) { return std::vector<std::size_t>{}; }), Error);
+    EXPECT_THROW(view_only.select({"left"}), Error);
+}
+
+TEST(Authoring, ADraggedPointFollowsTheCursorInThePlaneFacingTheCameraOrAlongItsAxis) {
+    Authoring a(two(), std::nullopt);
+    Camera cam;  // at (0, 0, 50) looking at the origin, 720 × 480, 40°
+    a.select({"right"});
+    EXPECT_THROW(a.drag_point(cam, glm::mat3(1.0f), 7, {0, 0}, {1, 1}, -1), Error);  // 3 control points
+    // Point 1, (3, −5, 0), lies in the plane z = 0, 50 from the eye: a pixel there is 2 · 50 · tan 20° / 480.
+    const double pixel = 2.0 * 50.0 * std::tan(0.5 * cam.fov_y) / cam.height;
+    a.drag_point(cam, glm::mat3(1.0f), 1, {400, 300}, {420, 290}, -1);
+    const glm::dvec3 moved = a.style()->clusters[1].shape->trajectory().control()[1];
+    EXPECT_NEAR(moved.x, 3.0 + 20 * pixel, 1e-3);
+    EXPECT_NEAR(moved.y, -5.0 + 10 * pixel, 1e-3);  // image y runs down
+    EXPECT_NEAR(moved.z, 0.0, 1e-4);
+    // Locked to y, the horizontal part is dropped.
+    a.drag_point(cam, glm::mat3(1.0f), 1, {400, 300}, {420, 290}, 1);
+    const glm::dvec3 locked = a.style()->clusters[1].shape->trajectory().control()[1];
+    EXPECT_NEAR(locked.x, moved.x, 1e-4);
+    EXPECT_NEAR(locked.y, moved.y + 10 * pixel, 1e-3);
+    // Two drags, two steps.
+    ASSERT_TRUE(a.undo());
+    ASSERT_TRUE(a.undo());
+    EXPECT_EQ(a.style()->clusters[1].shape->trajectory().control()[1], glm::dvec3(3, -5, 0));
+    a.select({"left", "right"});
+    EXPECT_THROW(a.drag_point(cam, glm::mat3(1.0f), 1, {0, 0}, {1, 1}, -1), Error);  // one cluster at a time
+}
+
+}  // namespace
+}  // namespace coif
