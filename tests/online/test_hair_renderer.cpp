@@ -298,18 +298,7 @@ TEST(HairRenderer, FollowsTheBonesItIsGivenAsTheAuthoringMotionDoes) {
     const CookedShells read = parse_hair_asset(hair_asset_bytes(c), "two.coif");
     HairRenderer hr{CookedShells(read)};
     ASSERT_EQ(hr.bones(), (std::vector<std::string>{"a", "b"}));
-    BodyMesh head;
-    head.bones = {"a", "b"};
-    for (float x : {-5.0f, -1.0f, 1.0f, 5.0f})
-        for (float z : {-2.0f, 2.0f}) head.positions.push_back({x, 1.0f, z});
-    head.normals.assign(head.positions.size(), glm::vec3(0, 1, 0));
-    for (const glm::vec3& p : head.positions) {
-        BoneInfluence b;
-        b.weight = {1, 0, 0, 0};
-        if (p.x > 0.0f) b.bone = {1, 0, 0, 0};
-        head.influences.push_back(b);
-    }
-    head.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 6, 5}, {5, 6, 7}};
+    const BodyMesh head = test::skinned_head();
     hr.set_body(&head);
 
     const Camera cam = camera_of(hr);

@@ -19,22 +19,7 @@
 namespace coif {
 namespace {
 
-// A "head": two horizontal plates at y = 1 over the roots, x = −5 … −1 on bone "a" and x = 1 … 5 on bone "b".
-BodyMesh skinned_head() {
-    BodyMesh m;
-    m.bones = {"a", "b"};
-    for (float x : {-5.0f, -1.0f, 1.0f, 5.0f})
-        for (float z : {-2.0f, 2.0f}) m.positions.push_back({x, 1.0f, z});
-    m.normals.assign(m.positions.size(), glm::vec3(0, 1, 0));
-    for (const glm::vec3& p : m.positions) {
-        BoneInfluence b;
-        b.weight = {1, 0, 0, 0};
-        if (p.x > 0.0f) b.bone = {1, 0, 0, 0};
-        m.influences.push_back(b);
-    }
-    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 6, 5}, {5, 6, 7}};
-    return m;
-}
+using test::skinned_head;
 
 struct Scene {
     std::unique_ptr<gl::Context> context = gl::Context::headless();
