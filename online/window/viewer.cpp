@@ -540,6 +540,45 @@ private:
         }
     }
 
+    // The selected cluster's A, B and θ control points (its prototype's: every instance of it changes too), each
+    // edit landing when its field is let go (one undo step, one cook).
+    void profile_widgets() {
+        const std::size_t c = authoring_.selection()[0];
+        const HairStyle& st = *authoring_.style();
+        const GeneralizedCylinder& g = *st.clusters[st.clusters[c].prototype].shape;
+        const auto row = [&](const char* name, const Spline1& spline, double unit, float lo, float hi) {
+            std::vector<float> v;
+            for (const double x : spline.control()) v.push_back(static_cast<float>(x * unit));
+            bool done = false;
+            ImGui::PushID(name);
+            for (std::size_t i = 0; i < v.size(); ++i) {
+                ImGui::PushID(static_cast<int>(i));
+                ImGui::DragFloat(i == 0 ? name : "##more", &v[i], 0.01f * (hi - lo), lo, hi, "%.3g");
+                done |= ImGui::IsItemDeactivatedAfterEdit();
+                ImGui::PopID();
+            }
+            ImGui::PopID();
+            if (!done) return;
+            std::vector<double> values(v.begin(), v.end());
+            try {
+                authoring_.edit([&](HairStyle& s2, AbsorptionMap*) {
+                    set_profile(s2, c, name, values);
+                    return std::vector<std::size_t>{c};
+                });
+                sync();
+                message_.clear();
+            } catch (const Error& e) {
+                message_ = e.what();
+            }
+        };
+        if (!ImGui::TreeNode("profiles (root to tip)")) return;
+        const float size = static_cast<float>(2.0 * std::max(g.a(0.5), g.b(0.5)) + 1.0);
+        row("a", g.a_spline(), 1.0, 1e-3f, 4.0f * size);
+        row("b", g.b_spline(), 1.0, 1e-3f, 4.0f * size);
+        row("theta_deg", g.theta_spline(), 180.0 / 3.14159265358979323846, -360.0f, 360.0f);
+        ImGui::TreePop();
+    }
+
     // The panel's cluster section, and the handles drawn over the picture.
     void clusters_panel(int width, int height) {
         const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
@@ -557,6 +596,7 @@ private:
         ImGui::TextWrapped("selected: %s", names.empty() ? "none" : names.c_str());
         ImGui::TextWrapped("drag a handle to move a control point; X / Y lock the drag to an axis (%s)",
                            axis_lock_ < 0 ? "free" : axis_lock_ == 0 ? "x" : "y");
+        if (authoring_.selection().size() == 1) profile_widgets();
         if (ImGui::Button("duplicate")) cluster_edit("duplicate");
         ImGui::SameLine();
         if (ImGui::Button("mirror (x)")) cluster_edit("mirror");
