@@ -47,6 +47,9 @@ struct DynamicsParams {
 // damping and the stiffnesses in [0, 1], finite vectors, margin ≥ 0).
 void validate(const DynamicsParams& p);
 
+// The collider's hash cell for a character's body, scene units (cm): the Ratboy's vertices lie ~1 cm apart.
+inline constexpr float kBodyColliderCell = 2.0f;
+
 // The body the chains collide with: its surface points and outward normals (a skinned body's vertices), hashed.
 class BodyCollider {
 public:

@@ -16,15 +16,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-// The extremes (min, max) of the roots' signed distances from their nearest body vertex along its normal.
+// The extremes (min, max) of the roots' signed distances from their nearest body vertex's tangent plane (the
+// collider's measure: models/hair_dynamics.h).
 glm::dvec2 root_offsets(const std::vector<glm::vec3>& roots, const BodyMesh& body) {
+    BodyCollider collider;
+    collider.set(body.positions, body.normals, kBodyColliderCell);
     glm::dvec2 range(INFINITY, -INFINITY);
     for (const glm::vec3& r : roots) {
-        std::size_t best = 0;
-        float nearest = INFINITY;
-        for (std::size_t i = 0; i < body.positions.size(); ++i)
-            if (const float d = glm::distance(r, body.positions[i]); d < nearest) nearest = d, best = i;
-        const double s = glm::dot(r - body.positions[best], body.normals[best]);
+        const double s = collider.signed_distance(r);
         range = {std::min(range.x, s), std::max(range.y, s)};
     }
     return range;

@@ -7,7 +7,6 @@
 
 namespace coif::gl {
 namespace {
-constexpr float kColliderCell = 2.0f;  // the body collider's hash cell, scene units (cm): its vertices lie ~1 cm apart
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 }  // namespace
@@ -60,7 +59,7 @@ void HairMotion::pose(ShellRenderer& renderer, const BonePose& pose) {
             dynamics_->reset(transforms_);
             dynamics_started_ = true;
         } else {
-            collider_.set(posed_.positions, posed_.normals, kColliderCell);
+            collider_.set(posed_.positions, posed_.normals, kBodyColliderCell);
             dynamics_->step(transforms_, collider_);
         }
         for (std::size_t c = 0; c < transforms_.size(); ++c) transforms_[c] = dynamics_->cluster_transform(c);
