@@ -583,8 +583,15 @@ private:
     void clusters_panel(int width, int height) {
         const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
         ImDrawList* overlay = ImGui::GetForegroundDrawList();
-        for (const glm::vec2 h : handles(width * (dragging_ ? kDragDivisor : 1), height * (dragging_ ? kDragDivisor : 1)))
-            overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
+        const std::vector<glm::vec2> hs = handles(width * (dragging_ ? kDragDivisor : 1), height * (dragging_ ? kDragDivisor : 1));
+        for (const glm::vec2 h : hs) overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
+        if (drag_point_ >= 0 && static_cast<std::size_t>(drag_point_) < hs.size()) {  // where the dragged point goes
+            const glm::vec2 h = hs[static_cast<std::size_t>(drag_point_)];
+            const ImVec2 from(h.x / scale.x, h.y / scale.y), mouse = ImGui::GetMousePos();
+            const ImVec2 to(from.x + mouse.x - float(drag_from_.x) / scale.x, from.y + mouse.y - float(drag_from_.y) / scale.y);
+            overlay->AddLine(from, to, IM_COL32(255, 200, 40, 255), 2.0f);
+            overlay->AddCircle(to, kHandleRadius + 2, IM_COL32(255, 255, 255, 255), 0, 2.0f);
+        }
         if (!ImGui::CollapsingHeader("clusters (Alt + click selects)")) return;
         ImGui::TextWrapped("Alt + Shift + click adds or removes a cluster");
         if (!authoring_.style()) {
