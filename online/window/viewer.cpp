@@ -503,7 +503,8 @@ private:
         result_.written.push_back(path);
     }
 
-    // The selected cluster's trajectory control points, in framebuffer pixels (top-left origin): the drag handles.
+    // The selected cluster's trajectory control points, in framebuffer pixels (top-left origin): the drag handles, one
+    // per control point in its order (NaN for a point behind the eye).
     std::vector<glm::vec2> handles(int width, int height) const {
         std::vector<glm::vec2> out;
         if (!authoring_.style() || authoring_.selection().size() != 1) return out;
@@ -513,7 +514,10 @@ private:
         const glm::mat3 turn = orientation();
         for (const glm::dvec3& p : authoring_.style()->clusters[c.prototype].shape->trajectory().control()) {
             const glm::vec4 clip = vp * glm::vec4(turn * glm::vec3(c.placement.apply(p)), 1.0f);
-            if (clip.w <= 0.0f) continue;
+            if (clip.w <= 0.0f) {  // behind the eye: no handle (NaN keeps the points' indices)
+                out.emplace_back(NAN, NAN);
+                continue;
+            }
             out.emplace_back((0.5f + 0.5f * clip.x / clip.w) * float(width), (0.5f - 0.5f * clip.y / clip.w) * float(height));
         }
         return out;
@@ -584,8 +588,10 @@ private:
         const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
         ImDrawList* overlay = ImGui::GetForegroundDrawList();
         const std::vector<glm::vec2> hs = handles(width * (dragging_ ? kDragDivisor : 1), height * (dragging_ ? kDragDivisor : 1));
-        for (const glm::vec2 h : hs) overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
-        if (drag_point_ >= 0 && static_cast<std::size_t>(drag_point_) < hs.size()) {  // where the dragged point goes
+        for (const glm::vec2 h : hs)
+            if (!std::isnan(h.x)) overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
+        if (drag_point_ >= 0 && static_cast<std::size_t>(drag_point_) < hs.size() && !std::isnan(hs[static_cast<std::size_t>(drag_point_)].x)) {
+            // where the dragged point goes
             const glm::vec2 h = hs[static_cast<std::size_t>(drag_point_)];
             const ImVec2 from(h.x / scale.x, h.y / scale.y), mouse = ImGui::GetMousePos();
             const ImVec2 to(from.x + mouse.x - float(drag_from_.x) / scale.x, from.y + mouse.y - float(drag_from_.y) / scale.y);
