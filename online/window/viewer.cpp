@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <future>
 #include <cmath>
 #include <cstdio>
@@ -618,15 +619,8 @@ private:
         if (ImGui::Button("undo (Ctrl+Z)##clusters")) undo();
         ImGui::SameLine();
         if (ImGui::Button("redo (Ctrl+Y)##clusters")) redo();
-        ImGui::InputText("style file", style_path_, sizeof style_path_);
-        if (ImGui::Button("save style")) {
-            try {
-                save_style(style_path_);
-                message_ = std::string("saved ") + style_path_ + " (coif render --style)";
-            } catch (const Error& e) {
-                message_ = e.what();
-            }
-        }
+        save_row("style file", style_path_, sizeof style_path_, "save style", "coif render --style",
+                 [&](const std::filesystem::path& p) { save_style(p); });
         if (recook_ms_ > 0) ImGui::Text("last edit cooked in %.0f ms", recook_ms_);
     }
 
@@ -636,6 +630,19 @@ private:
         glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
         if (authoring_.painting().dab(camera_at(fb_w, fb_h), scene_.renderer->prepared(), x, y, brush, settings_.hair.fibre.sigma_a))
             apply_paint();
+    }
+
+    // A file name field and its save button; the outcome, or why it failed, shown in the panel.
+    void save_row(const char* field, char* path, std::size_t size, const char* button, const char* reader,
+                  const std::function<void(const std::filesystem::path&)>& save) {
+        ImGui::InputText(field, path, size);
+        if (!ImGui::Button(button)) return;
+        try {
+            save(path);
+            message_ = std::string("saved ") + path + " (" + reader + ")";
+        } catch (const Error& e) {
+            message_ = e.what();
+        }
     }
 
     // The panel's brush.
@@ -655,15 +662,8 @@ private:
             authoring_.painting().replace(std::nullopt);
             apply_paint();
         }
-        ImGui::InputText("map file", absorption_path_, sizeof absorption_path_);
-        if (ImGui::Button("save map")) {
-            try {
-                save_absorption(absorption_path_);
-                message_ = std::string("saved ") + absorption_path_ + " (coif render --absorption)";
-            } catch (const Error& e) {
-                message_ = e.what();
-            }
-        }
+        save_row("map file", absorption_path_, sizeof absorption_path_, "save map", "coif render --absorption",
+                 [&](const std::filesystem::path& p) { save_absorption(p); });
         if (authoring_.map()) ImGui::TextWrapped("painted: the map's σa replaces sigma_a below");
     }
 
