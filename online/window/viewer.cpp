@@ -487,7 +487,15 @@ private:
         if (authoring_.style() && authoring_.style_version() != cooked_version_) {
             const auto t0 = Clock::now();
             const HairStyle& st = *authoring_.style();
-            ShellView v = scene_.view_of(st, framing_, lighting_rows_);
+            ShellView v;
+            try {
+                v = scene_.view_of(st, framing_, lighting_rows_);
+            } catch (const Error&) {  // e.g. the eye inside the edited hair: back to the style drawn, and say why
+                authoring_.undo();
+                cooked_version_ = authoring_.style_version();
+                apply_paint();
+                throw;
+            }
             scene_.renderer = std::move(v.renderer);  // the camera keeps its framing: an edit does not move the view
             scene_.style = st;
             scene_.renderer->set_lights(scene_.lights);
