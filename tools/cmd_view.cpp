@@ -81,7 +81,7 @@ void add_view(CLI::App& root) {
         "adds or removes one), a left drag from one of its control points' handles moves that point (X, Y: along that\n"
         "axis only), Delete removes the selection, and the panel's \"clusters\" section edits A, B and theta, duplicates,\n"
         "mirrors and saves the style. Ctrl+Z and Ctrl+Y undo and redo strokes and edits alike; each edit cooks the\n"
-        "style again (about a second for the default style on llvmpipe).\n"
+        "style again, keeping what it did not change (about half a second for the default style on llvmpipe).\n"
         "While the camera is dragged the frame is drawn at half size. Tab hides the panel: the frame time and its\n"
         "passes, every --params key (saved to and loaded from that file), the hair colour as melanin, the exposure,\n"
         "and the environment (its turn, and a map of --maps fitted with N SRBF lights while the viewer goes on).\n"

@@ -112,7 +112,68 @@ RecordAtlas pack_record_atlas(const HrirDatabase& db) {
     return pack_record_atlas(db, all, database_atlas_stats(db));
 }
 
-void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha) {
+const PrototypeCache::Entry* PrototypeCache::find(const std::string& key) {
+    auto it = last_.find(key);
+    if (it == last_.end()) {
+        ++misses_;
+        return nullptr;
+    }
+    ++hits_;
+    return &it->second;
+}
+
+void PrototypeCache::keep(std::string key, Entry entry) { now_.insert_or_assign(std::move(key), std::move(entry)); }
+
+void PrototypeCache::start() {
+    last_ = std::move(now_);  // the last cook's prototypes
+    now_.clear();
+    hits_ = misses_ = 0;
+}
+
+namespace {
+// A prototype's cache key: its layout, shape and density, bit for bit.
+std::string prototype_key(const DiskLayout& L, const Cluster& c) {
+    std::string k;
+    const auto put = [&](const void* p, std::size_t n) { k.append(static_cast<const char*>(p), n); };
+    const int ints[] = {L.layers, L.s_t, L.s_u, L.grid_s, L.grid_r, L.mesh_t, L.mesh_u};
+    put(ints, sizeof ints);
+    put(&L.core_radius, sizeof(double));
+    put(&L.gaussian_width, sizeof(double));
+    const GeneralizedCylinder& g = *c.shape;
+    const auto spline = [&](const std::vector<double>& v) {
+        const std::size_t n = v.size();
+        put(&n, sizeof n);
+        put(v.data(), n * sizeof(double));
+    };
+    const std::size_t n = g.trajectory().size();
+    put(&n, sizeof n);
+    put(g.trajectory().control().data(), n * sizeof(glm::dvec3));
+    spline(g.a_spline().control());
+    spline(g.b_spline().control());
+    spline(g.theta_spline().control());
+    const DensitySource& d = *c.density;
+    put(&d.kind, sizeof d.kind);
+    put(&d.value, sizeof d.value);
+    put(&d.strand_weight, sizeof d.strand_weight);
+    for (const StrandRun& r : d.strands) {
+        const std::size_t m = r.vu.size();
+        put(&r.first_plane, sizeof r.first_plane);
+        put(&m, sizeof m);
+        put(r.vu.data(), m * sizeof(glm::dvec2));
+    }
+    k += '|';
+    for (const std::vector<float>& grid : d.grids) {
+        const std::size_t m = grid.size();
+        put(&m, sizeof m);
+        put(grid.data(), m * sizeof(float));
+    }
+    return k;
+}
+}  // namespace
+
+void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
+                        PrototypeCache* cache) {
+    if (cache) cache->start();
     if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
     m.layout = style.layout;
     const DiskLayout& L = m.layout;
@@ -139,6 +200,24 @@ void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfInd
     for (std::size_t p = 0; p < m.prototypes.size(); ++p) {
         const Cluster& proto = style.clusters[m.prototypes[p]];
         const GeneralizedCylinder& shape = *proto.shape;
+        std::string key;
+        const std::size_t first_vertex = vertices.size(), first_index = indices.size();
+        if (cache) {
+            key = prototype_key(L, proto);
+            if (const PrototypeCache::Entry* e = cache->find(key)) {  // made by an earlier cook: the same arrays
+                for (MeshRange r : e->meshes) {
+                    r.first += static_cast<std::uint32_t>(first_index);
+                    r.base_vertex += static_cast<std::int32_t>(first_vertex);
+                    m.meshes[p].push_back(r);
+                    m.triangles += static_cast<std::size_t>(r.count) / 3;
+                }
+                vertices.insert(vertices.end(), e->vertices.begin(), e->vertices.end());
+                indices.insert(indices.end(), e->indices.begin(), e->indices.end());
+                std::copy(e->sectors.begin(), e->sectors.end(), m.sectors.begin() + static_cast<std::ptrdiff_t>(p * per_proto));
+                cache->keep(std::move(key), *e);
+                continue;
+            }
+        }
         for (int j = 0; j < L.layers; ++j) {
             const LayerMesh mesh = layer_mesh(shape, L, j);
             MeshRange range;
@@ -177,19 +256,32 @@ void prepare_prototypes(PreparedShells& m, const HairStyle& style, const SatfInd
                 for (int j = 0; j < L.layers; ++j)  // Σ ᾱ of every layer: one radius (shaders/lighting/own_cluster.glsl)
                     m.sectors[p * per_proto + L.sector_index(i, j, k)].shadow.y = outer;
             }
+        if (cache) {
+            PrototypeCache::Entry e;
+            e.vertices.assign(vertices.begin() + static_cast<std::ptrdiff_t>(first_vertex), vertices.end());
+            e.indices.assign(indices.begin() + static_cast<std::ptrdiff_t>(first_index), indices.end());
+            for (MeshRange r : m.meshes[p]) {
+                r.first -= static_cast<std::uint32_t>(first_index);
+                r.base_vertex -= static_cast<std::int32_t>(first_vertex);
+                e.meshes.push_back(r);
+            }
+            e.sectors.assign(m.sectors.begin() + static_cast<std::ptrdiff_t>(p * per_proto),
+                             m.sectors.begin() + static_cast<std::ptrdiff_t>((p + 1) * per_proto));
+            cache->keep(std::move(key), std::move(e));
+        }
     }
 }
 
 PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
-                              const glm::mat3& orientation, int lighting_rows_per_hsv) {
+                              const glm::mat3& orientation, int lighting_rows_per_hsv, PrototypeCache* cache) {
     PreparedShells shells;
-    prepare_prototypes(shells, style, satf, mean_alpha);
+    prepare_prototypes(shells, style, satf, mean_alpha, cache);
     place_clusters(shells, style, orientation, lighting_rows_per_hsv);
     return shells;
 }
 
 CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
-                         int lighting_rows_per_hsv, Strands* sampled_strands) {
+                         int lighting_rows_per_hsv, Strands* sampled_strands, PrototypeCache* cache) {
     const HrirDatabase& db = satf.database();
     if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
     CookedShells c;
@@ -197,7 +289,7 @@ CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const gl
     c.source = c.database = db.path().string();
     c.database_records = db.size();
     const DatabaseAtlasStats stats = database_atlas_stats(db);
-    c.shells = prepare_shells(style, satf, stats.mean_alpha, orientation, lighting_rows_per_hsv);
+    c.shells = prepare_shells(style, satf, stats.mean_alpha, orientation, lighting_rows_per_hsv, cache);
     // Only the records the sectors use go into the atlas, renumbered in order of their database id.
     std::vector<std::uint32_t> used;
     for (const ShellSector& s : c.shells.sectors)

@@ -5,6 +5,8 @@
 // `coif render STYLE` cooks on every load; `coif bake` cooks once and writes the result as a `.coif` asset,
 // which the runtime (coif::runtime) loads without the database.
 #include <array>
+#include <map>
+#include <string>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
@@ -35,14 +37,39 @@ RecordAtlas pack_record_atlas(const HrirDatabase& db, std::span<const std::uint3
 // Every record of the database, in order.
 RecordAtlas pack_record_atlas(const HrirDatabase& db);
 
+// What stage 1 made of each prototype (its layer meshes, its sectors' look-ups and shadow sums), kept between cooks
+// of a style being edited (coif view's cluster authoring): a prototype whose shape, density and layout are unchanged,
+// bit for bit, is taken from here instead of being made again, and the result is the same. Its entries are keyed by
+// those contents; it holds the prototypes of the last cook only. For one database: a cache must not outlive its
+// SatfIndex or serve another.
+class PrototypeCache {
+public:
+    struct Entry {
+        std::vector<ShellVertex> vertices;
+        std::vector<std::uint32_t> indices;
+        std::vector<MeshRange> meshes;  // first and base_vertex relative to the entry's arrays
+        std::vector<ShellSector> sectors;
+    };
+    std::size_t hits() const { return hits_; }      // of the last cook
+    std::size_t misses() const { return misses_; }
+    // Internal to prepare_prototypes.
+    const Entry* find(const std::string& key);
+    void keep(std::string key, Entry entry);
+    void start();  // a cook begins: the last one's entries become the ones it may take from
+
+private:
+    std::map<std::string, Entry> last_, now_;
+    std::size_t hits_ = 0, misses_ = 0;
+};
+
 // Stage 1 of the preparation (online/shells/prepared_shells.h): meshes, sector look-ups and shadow sums of every
 // prototype. `mean_alpha`: per database record. Sector ids are database record ids. Throws coif::Error if the
-// style has no clusters.
+// style has no clusters. `cache`: see PrototypeCache (null: every prototype made).
 void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const SatfIndex& satf,
-                        std::span<const float> mean_alpha);
+                        std::span<const float> mean_alpha, PrototypeCache* cache = nullptr);
 // Stages 1 and 2.
 PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
-                              const glm::mat3& orientation, int lighting_rows_per_hsv = 0);
+                              const glm::mat3& orientation, int lighting_rows_per_hsv = 0, PrototypeCache* cache = nullptr);
 
 // Everything the shell renderer draws a style with: both stages, the records the sectors use (and only those)
 // packed with the database's ranges, with the sectors' ids renumbered to them, the shadow grid of the style's
@@ -50,6 +77,6 @@ PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std
 // `lighting_rows_per_hsv` as place_clusters. `sampled_strands`, if given, receives the sampled strands (the style's
 // axes, not turned), so that a caller need not sample again. Throws coif::Error as the stages do.
 CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
-                         int lighting_rows_per_hsv = 0, Strands* sampled_strands = nullptr);
+                         int lighting_rows_per_hsv = 0, Strands* sampled_strands = nullptr, PrototypeCache* cache = nullptr);
 
 }  // namespace coif

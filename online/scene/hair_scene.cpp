@@ -50,9 +50,9 @@ ShellView make_view(CookedShells cooked, const Strands* sampled, const std::vect
 }
 
 ShellView cook_view(const HairStyle& style, const SatfIndex& satf, const std::vector<SrbfLight>& lights,
-                    const AbsorptionMap* absorption, const SceneFraming& framing, int lighting_rows) {
+                    const AbsorptionMap* absorption, const SceneFraming& framing, int lighting_rows, PrototypeCache* cache = nullptr) {
     Strands sampled;
-    CookedShells cooked = cook_shells(style, satf, style_orientation(style), lighting_rows, &sampled);
+    CookedShells cooked = cook_shells(style, satf, style_orientation(style), lighting_rows, &sampled, cache);
     return make_view(std::move(cooked), &sampled, lights, absorption, framing);
 }
 
@@ -73,7 +73,7 @@ HairScene::HairScene(HairSceneDesc desc)
         satf.emplace(SatfIndex::open(*db, SatfOptions{}));
         database_label = db->path().string();
         if (desc.headless) context = Context::headless();
-        v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows);
+        v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows, desc.prototype_cache);
     }
     renderer = std::move(v.renderer);
     if (desc.body) {
@@ -92,9 +92,9 @@ HairScene::HairScene(HairSceneDesc desc)
     frame_max = v.frame_max;
 }
 
-ShellView HairScene::view_of(const HairStyle& other, const SceneFraming& framing, int lighting_rows) const {
+ShellView HairScene::view_of(const HairStyle& other, const SceneFraming& framing, int lighting_rows, PrototypeCache* cache) const {
     if (!satf) throw Error::parameter("style", "a scene drawn from an asset has no database to cook another style with");
-    return cook_view(other, *satf, lights, nullptr, framing, lighting_rows);
+    return cook_view(other, *satf, lights, nullptr, framing, lighting_rows, cache);
 }
 
 }  // namespace coif::gl

@@ -21,6 +21,7 @@
 #include "models/strands.h"
 #include "offline/srbf_lights.h"
 #include "online/gl_context.h"
+#include "online/scene/cook.h"
 #include "online/shell_renderer.h"
 
 namespace coif::gl {
@@ -53,6 +54,7 @@ struct HairSceneDesc {
     std::ostream* log = nullptr;       // the default database's messages (which file, building it); null: none
     int lighting_rows = 0;             // ShellRenderer's lighting_rows_per_hsv (0: one per mesh row)
     const AbsorptionMap* absorption = nullptr;  // painted σa, or null; must outlive the scene
+    PrototypeCache* prototype_cache = nullptr;  // online/scene/cook.h: kept for later cooks of edits (view_of); or null
     // A character's body under the hair (ShellRenderer::set_body), in the strand file's frame: turned as the style's
     // strands were on import (style_source_rotation) and are when drawn (style_orientation), which an asset holds
     // (CookedShells::body_orientation). Unless framing.box is set, the camera frames the hair and the body together.
@@ -88,7 +90,7 @@ struct HairScene {
     // Another style's shells in a renderer sharing this scene's database, SATF index and lights, framed by
     // `framing` (without absorption); throws as the constructor, and coif::Error if the scene is an asset's (it has
     // no database). The renderer must not outlive the scene.
-    ShellView view_of(const HairStyle& style, const SceneFraming& framing, int lighting_rows) const;
+    ShellView view_of(const HairStyle& style, const SceneFraming& framing, int lighting_rows, PrototypeCache* cache = nullptr) const;
 
     std::string lights_label;
     std::vector<SrbfLight> lights;

@@ -102,7 +102,7 @@ public:
           framing_(o.scene.framing),
           lighting_rows_(o.scene.lighting_rows),
           body_(o.scene.body),
-          scene_(scene_desc(o)),
+          scene_(scene_desc(o, &prototypes_)),
           background_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_background.frag"}),
           present_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_present.frag"}),
           copy_({"shaders/gl/fullscreen.vert", "shaders/gl/copy_texture.frag"}),
@@ -164,10 +164,11 @@ public:
     }
 
 private:
-    static HairSceneDesc scene_desc(ViewerOptions& o) {
+    static HairSceneDesc scene_desc(ViewerOptions& o, PrototypeCache* cache) {
         HairSceneDesc d = std::move(o.scene);
         d.headless = false;
         d.absorption = o.absorption ? &*o.absorption : nullptr;  // the options outlive the viewer (run_viewer)
+        d.prototype_cache = cache;
         return d;
     }
 
@@ -489,7 +490,7 @@ private:
             const HairStyle& st = *authoring_.style();
             ShellView v;
             try {
-                v = scene_.view_of(st, framing_, lighting_rows_);
+                v = scene_.view_of(st, framing_, lighting_rows_, &prototypes_);
             } catch (const Error&) {  // e.g. the eye inside the edited hair: back to the style drawn, and say why
                 authoring_.undo();
                 cooked_version_ = authoring_.style_version();
@@ -502,7 +503,9 @@ private:
             if (body_) scene_.renderer->set_body(&*body_, style_orientation(st) * style_source_rotation(st));
             cooked_version_ = authoring_.style_version();
             recook_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-            log_message(LogLevel::info, "coif view: cooked the edited style in " + std::to_string(static_cast<int>(recook_ms_)) + " ms");
+            log_message(LogLevel::info, "coif view: cooked the edited style in " + std::to_string(static_cast<int>(recook_ms_)) +
+                                            " ms (" + std::to_string(prototypes_.misses()) + " of " +
+                                            std::to_string(prototypes_.hits() + prototypes_.misses()) + " prototypes made anew)");
         }
         apply_paint();
     }
@@ -1006,6 +1009,7 @@ private:
     int lighting_rows_ = 0;
     std::optional<BodyMesh> body_;  // the scene's body, set again on an edited style's renderer
     std::uint64_t cooked_version_ = 0;  // authoring_.style_version() of the style the renderer draws
+    PrototypeCache prototypes_;     // the prototypes of the last cook, for the next (an edit makes only what changed)
     double recook_ms_ = 0;          // the last edit's cooking
     int drag_point_ = -1;           // the control point the mouse drags (−1: none), from (drag_from_)
     glm::dvec2 drag_from_{0.0};

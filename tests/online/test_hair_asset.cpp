@@ -9,6 +9,7 @@
 
 #include "models/core/checksum.h"
 #include "models/core/error.h"
+#include "models/style_edit.h"
 #include "online/gl_context.h"
 #include "online/scene/cook.h"
 #include "online/shell_renderer.h"
@@ -98,6 +99,25 @@ TEST(HairAsset, HoldsOnlyTheRecordsItsSectorsUseAndDrawsAsTheWholeDatabase) {
     // The texels are the same; only the atlas's size, and with it the rounding of the normalised fetch coordinate,
     // differs: within 1e-3 of the mean (in practice 0).
     EXPECT_LE(diff, 1e-3 * mean);
+}
+
+TEST(HairAsset, ACookThatKeepsItsUnchangedPrototypesIsTheSameCook) {
+    // coif view's edits cook again keeping what did not change (PrototypeCache): the same bytes as a cook from nothing.
+    HairStyle s = test::two_cluster_style();
+    PrototypeCache cache;
+    (void)cook_shells(s, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
+    EXPECT_EQ(cache.hits(), 0u);
+    EXPECT_EQ(cache.misses(), 2u);
+    move_control_point(s, 1, 1, {0.5, 0.0, 0.3});  // the right cluster's middle point
+    const CookedShells kept = cook_shells(s, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
+    EXPECT_EQ(cache.hits(), 1u);
+    EXPECT_EQ(cache.misses(), 1u);
+    EXPECT_EQ(hair_asset_bytes(kept), hair_asset_bytes(cook_shells(s, test_index(), glm::mat3(1.0f))));
+    // Undone: the right cluster as it was is made again (the cache holds the last cook's prototypes only), the left kept.
+    HairStyle back = test::two_cluster_style();
+    const CookedShells undone = cook_shells(back, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
+    EXPECT_EQ(cache.hits(), 1u);
+    EXPECT_EQ(hair_asset_bytes(undone), hair_asset_bytes(cook_shells(back, test_index(), glm::mat3(1.0f))));
 }
 
 TEST(HairAsset, RefusesTruncatedCorruptAndOtherVersionFiles) {
