@@ -124,6 +124,14 @@ const PrototypeCache::Entry* PrototypeCache::find(const std::string& key) {
 
 void PrototypeCache::keep(std::string key, Entry entry) { now_.insert_or_assign(std::move(key), std::move(entry)); }
 
+const DatabaseAtlasStats& PrototypeCache::atlas_stats(const HrirDatabase& db) {
+    if (stats_of_ != &db) {
+        stats_ = database_atlas_stats(db);
+        stats_of_ = &db;
+    }
+    return stats_;
+}
+
 void PrototypeCache::start() {
     last_ = std::move(now_);  // the last cook's prototypes
     now_.clear();
@@ -288,7 +296,8 @@ CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const gl
     c.name = style.name;
     c.source = c.database = db.path().string();
     c.database_records = db.size();
-    const DatabaseAtlasStats stats = database_atlas_stats(db);
+    const DatabaseAtlasStats local = cache ? DatabaseAtlasStats{} : database_atlas_stats(db);
+    const DatabaseAtlasStats& stats = cache ? cache->atlas_stats(db) : local;
     c.shells = prepare_shells(style, satf, stats.mean_alpha, orientation, lighting_rows_per_hsv, cache);
     // Only the records the sectors use go into the atlas, renumbered in order of their database id.
     std::vector<std::uint32_t> used;

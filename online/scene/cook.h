@@ -52,6 +52,9 @@ public:
     };
     std::size_t hits() const { return hits_; }      // of the last cook
     std::size_t misses() const { return misses_; }
+    // The database's atlas ranges (database_atlas_stats), computed on the first cook and kept: they depend on the
+    // database alone.
+    const DatabaseAtlasStats& atlas_stats(const HrirDatabase& db);
     // Internal to prepare_prototypes.
     const Entry* find(const std::string& key);
     void keep(std::string key, Entry entry);
@@ -60,6 +63,8 @@ public:
 private:
     std::map<std::string, Entry> last_, now_;
     std::size_t hits_ = 0, misses_ = 0;
+    const HrirDatabase* stats_of_ = nullptr;
+    DatabaseAtlasStats stats_;
 };
 
 // Stage 1 of the preparation (online/shells/prepared_shells.h): meshes, sector look-ups and shadow sums of every
