@@ -5,6 +5,7 @@
 #include <string>
 
 #include "models/core/error.h"
+#include "models/core/units.h"
 #include "models/style_fit.h"
 
 namespace coif {
@@ -59,7 +60,7 @@ Strands follow_strands(const Strands& guides, const FollowOptions& o, std::vecto
         for (std::size_t j = 0; j < N; ++j) {
             glm::dvec3 offset(0.0);
             if (j > 0) {  // uniform in the disc: radius r √u, angle 2π v
-                const double rho = r * std::sqrt(unit(rng)), phi = 2.0 * 3.14159265358979323846 * unit(rng);
+                const double rho = r * std::sqrt(unit(rng)), phi = kTwoPi * unit(rng);
                 offset = rho * (std::cos(phi) * a + std::sin(phi) * b);
             }
             for (std::size_t k = 0; k < n; ++k) {

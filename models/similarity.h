@@ -17,6 +17,14 @@ struct Similarity {
     bool is_identity() const {
         return scale == 1.0 && rotation == glm::dquat(1.0, 0.0, 0.0, 0.0) && translation == glm::dvec3(0.0);
     }
+    // x ↦ R⁻¹ (x − c) / s.
+    Similarity inverse() const {
+        Similarity r;
+        r.scale = 1.0 / scale;
+        r.rotation = glm::conjugate(rotation);
+        r.translation = -(r.scale * (r.rotation * translation));
+        return r;
+    }
     // (this ∘ inner)(x) = this(inner(x)).
     Similarity after(const Similarity& inner) const {
         Similarity r;

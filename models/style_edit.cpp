@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <glm/gtc/quaternion.hpp>
 #include <cmath>
-#include <numbers>
 #include <set>
 #include <stdexcept>
 #include <string>
 
 #include "models/core/error.h"
+#include "models/core/units.h"
 
 namespace coif {
 namespace {
@@ -28,14 +28,6 @@ void check_similarity(const Similarity& s) {
                         std::isfinite(s.translation.y) && std::isfinite(s.translation.z);
     if (!finite || !(s.scale > 0.0) || std::abs(glm::length(s.rotation) - 1.0) > 1e-6)
         throw Error::parameter("transform", "must be finite, with a positive scale and a unit rotation");
-}
-
-Similarity inverse(const Similarity& s) {
-    Similarity r;
-    r.scale = 1.0 / s.scale;
-    r.rotation = glm::conjugate(s.rotation);
-    r.translation = -(r.scale * (r.rotation * s.translation));
-    return r;
 }
 
 std::shared_ptr<const GeneralizedCylinder> make_shape(Spline3 trajectory, Spline1 a, Spline1 b, Spline1 theta) {
@@ -86,7 +78,6 @@ std::shared_ptr<const GeneralizedCylinder> mirrored_shape(const GeneralizedCylin
 // A density with the angle around reversed (u ↦ −u): each ring's sectors in reverse order, each grid flipped along s.
 std::shared_ptr<const DensitySource> mirrored_density(const DensitySource& d, const DiskLayout& L) {
     auto out = std::make_shared<DensitySource>(d);
-    constexpr double kTwoPi = 2.0 * std::numbers::pi;
     for (StrandRun& run : out->strands)
         for (glm::dvec2& vu : run.vu) vu.y = vu.y > 0.0 ? kTwoPi - vu.y : 0.0;
     if (d.kind == DensitySource::Kind::Grids)
@@ -141,10 +132,9 @@ void check_rows(const HairStyle& style, const AbsorptionMap* absorption) {
                                                  std::to_string(style.clusters.size()) + " clusters");
 }
 
-// The prototype a cluster's geometry edits go to, and the similarity from its coordinates to the cluster's.
+// The prototype a cluster's geometry edits go to.
 std::size_t edited_prototype(const HairStyle& style, std::size_t cluster) {
-    if (cluster >= style.clusters.size())
-        throw Error::parameter("cluster", std::to_string(cluster) + " is out of range (the style has " + std::to_string(style.clusters.size()) + ")");
+    check_clusters(style, std::span(&cluster, 1));
     return style.clusters[cluster].prototype;
 }
 
@@ -159,11 +149,10 @@ Similarity similarity_about(const HairStyle& style, std::span<const std::size_t>
         for (const std::size_t c : clusters) p += style.clusters[c].placement.apply(style.clusters[c].shape->position(0.0));
         if (!clusters.empty()) p /= static_cast<double>(clusters.size());
     }
-    const double k = std::numbers::pi / 180.0;
     Similarity s;
     s.scale = scale;
-    s.rotation = glm::angleAxis(k * rotate_deg.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(k * rotate_deg.y, glm::dvec3(0, 1, 0)) *
-                 glm::angleAxis(k * rotate_deg.x, glm::dvec3(1, 0, 0));
+    s.rotation = glm::angleAxis(radians(rotate_deg.z), glm::dvec3(0, 0, 1)) * glm::angleAxis(radians(rotate_deg.y), glm::dvec3(0, 1, 0)) *
+                 glm::angleAxis(radians(rotate_deg.x), glm::dvec3(1, 0, 0));
     s.translation = p - scale * (s.rotation * p) + translate;
     check_similarity(s);
     return s;
@@ -191,7 +180,7 @@ std::size_t find_cluster(const HairStyle& style, const std::string& name) {
 void transform_clusters(HairStyle& style, std::span<const std::size_t> clusters, const Similarity& s) {
     check_clusters(style, clusters);
     check_similarity(s);
-    const Similarity inv = inverse(s);
+    const Similarity inv = s.inverse();
     for (const std::size_t c : clusters) {  // prototypes: the shape rewritten, their direct instances kept in place
         if (style.clusters[c].instance_of) continue;
         style.clusters[c].shape = placed_shape(*style.clusters[c].shape, s);
@@ -270,7 +259,7 @@ void delete_clusters(HairStyle& style, std::span<const std::size_t> clusters, Ab
                 cl.density = dead.density;
                 cl.instance_of.reset();
                 cl.transform = {};
-                const Similarity inv = inverse(was);
+                const Similarity inv = was.inverse();
                 for (std::size_t m = 0; m < n; ++m)
                     if (m != k && !gone[m] && style.clusters[m].instance_of == d) {
                         style.clusters[m].instance_of = k;
@@ -327,7 +316,7 @@ void set_profile(HairStyle& style, std::size_t cluster, const std::string& profi
     std::vector<double> c(values.begin(), values.end());
     for (double& x : c) {
         if (!std::isfinite(x) || (radius && !(x > 0.0))) throw Error::parameter(profile, radius ? "half-axes must be finite and > 0" : "must be finite");
-        if (!radius) x *= std::numbers::pi / 180.0;
+        if (!radius) x = radians(x);
     }
     const GeneralizedCylinder& g = *style.clusters[p].shape;
     style.clusters[p].shape = make_shape(g.trajectory(), profile == "a" ? Spline1(c) : g.a_spline(), profile == "b" ? Spline1(c) : g.b_spline(),

@@ -17,6 +17,7 @@
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/core/log.h"
+#include "models/core/units.h"
 #include "offline/srbf_fit.h"
 #include "offline/srbf_lights.h"
 #include "online/gl.h"
@@ -591,7 +592,7 @@ private:
         const float size = static_cast<float>(2.0 * std::max(g.a(0.5), g.b(0.5)) + 1.0);
         row("a", g.a_spline(), 1.0, 1e-3f, 4.0f * size);
         row("b", g.b_spline(), 1.0, 1e-3f, 4.0f * size);
-        row("theta_deg", g.theta_spline(), 180.0 / 3.14159265358979323846, -360.0f, 360.0f);
+        row("theta_deg", g.theta_spline(), kDegreesPerRadian, -360.0f, 360.0f);
         ImGui::TreePop();
     }
 
