@@ -161,6 +161,15 @@ std::pair<glm::vec3, glm::vec3> BodyMesh::bounds(const glm::mat3& orientation) c
     return {lo, hi};
 }
 
+BodyMesh BodyMesh::turned(const glm::mat3& orientation) const {
+    BodyMesh out = *this;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        out.positions[i] = orientation * positions[i];
+        out.normals[i] = glm::normalize(orientation * normals[i]);
+    }
+    return out;
+}
+
 BodyMesh parse_tfxmesh(const std::vector<std::byte>& bytes, const fs::path& path) {
     TextLines in(bytes, path);
     BodyMesh out;

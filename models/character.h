@@ -63,6 +63,8 @@ struct BodyMesh {
     bool axes_stated = false;           // .tfxmesh: y-up centimetres, the .tfx's frame
     // The box (min, max) of the positions turned by `orientation`.
     std::pair<glm::vec3, glm::vec3> bounds(const glm::mat3& orientation = glm::mat3(1.0f)) const;
+    // The same body turned by `orientation` (a rotation): its positions and normals.
+    BodyMesh turned(const glm::mat3& orientation) const;
 };
 
 struct StrandSkinning {

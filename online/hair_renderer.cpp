@@ -83,13 +83,7 @@ const std::vector<std::string>& HairRenderer::bones() const {
 
 void HairRenderer::set_body(const BodyMesh* body) {
     if (!body) body_.reset();
-    else {
-        body_ = *body;
-        for (std::size_t i = 0; i < body_->positions.size(); ++i) {
-            body_->positions[i] = body_orientation_ * body->positions[i];
-            body_->normals[i] = glm::normalize(body_orientation_ * body->normals[i]);
-        }
-    }
+    else body_ = body->turned(body_orientation_);
     const SavedState saved;  // the body's buffers and programs are made here
     apply_pose(std::vector<glm::mat4>(pose_));
 }

@@ -16,11 +16,7 @@ HairMotion::HairMotion(const HairStyle& style, const BodyMesh& body, const glm::
     if (!style.skinning) throw Error::parameter("style", "it has no bone weights (coif style import --skinning FILE.tfxbone)");
     if (body.bones.empty() || body.influences.size() != body.positions.size())
         throw Error::parameter("body", "it has no bone weights to pose it with (a .tfxmesh has them, an .obj has none)");
-    body_ = body;
-    for (std::size_t i = 0; i < body_.positions.size(); ++i) {
-        body_.positions[i] = body_orientation * body.positions[i];
-        body_.normals[i] = glm::normalize(body_orientation * body.normals[i]);
-    }
+    body_ = body.turned(body_orientation);
     posed_ = body_;
     rest_ = rest_pose(body_);
     bool any = false;

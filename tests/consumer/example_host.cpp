@@ -203,11 +203,7 @@ int main(int argc, char** argv) {
             if (hair.bones().empty()) throw coif::Error(asset, "bones", "the hair is not skinned: bake a style imported with --skinning");
             const coif::BodyMesh in_file = coif::read_body(body_file);
             hair.set_body(&in_file);  // its shadows on the hair
-            body = in_file;
-            for (std::size_t i = 0; i < body.positions.size(); ++i) {
-                body.positions[i] = hair.body_orientation() * in_file.positions[i];
-                body.normals[i] = glm::normalize(hair.body_orientation() * in_file.normals[i]);
-            }
+            body = in_file.turned(hair.body_orientation());
             poses.push_back({"rest", {}, body.positions, body.normals});
             // The host's animation: here coif's keyframe format; an engine gives its own skinning matrices.
             const coif::AnimationSpec spec = coif::read_animation_spec(spec_file);
