@@ -50,8 +50,7 @@ void Authoring::edit(const Edit& f) {
     std::vector<std::size_t> selected = f(style, map ? &*map : nullptr);  // throws: nothing changed
     // What its file holds (models/hair_style.h rounds control points): what is drawn is what is saved.
     style = parse_style(style_text(style), style.name);
-    undo_.push_back(current());
-    redo_.clear();
+    push_step();
     restore({std::make_shared<const HairStyle>(std::move(style)), std::move(map)});
     if (!selected.empty()) selection_ = std::move(selected);
 }
@@ -88,26 +87,27 @@ void Authoring::drag_point(const Camera& camera, const glm::mat3& orientation, i
     });
 }
 
-void Authoring::begin_stroke() {
+void Authoring::push_step() {
     undo_.push_back(current());
     redo_.clear();
-    painting_.begin_stroke();
 }
 
-bool Authoring::undo() {
-    if (undo_.empty()) return false;
-    redo_.push_back(current());
-    restore(std::move(undo_.back()));
-    undo_.pop_back();
+void Authoring::begin_stroke() { push_step(); }
+
+void Authoring::clear_paint() {
+    push_step();
+    painting_.replace(std::nullopt);
+}
+
+bool Authoring::step(std::vector<Snapshot>& from, std::vector<Snapshot>& to) {
+    if (from.empty()) return false;
+    to.push_back(current());
+    restore(std::move(from.back()));
+    from.pop_back();
     return true;
 }
 
-bool Authoring::redo() {
-    if (redo_.empty()) return false;
-    undo_.push_back(current());
-    restore(std::move(redo_.back()));
-    redo_.pop_back();
-    return true;
-}
+bool Authoring::undo() { return step(undo_, redo_); }
+bool Authoring::redo() { return step(redo_, undo_); }
 
 }  // namespace coif

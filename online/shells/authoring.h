@@ -46,8 +46,10 @@ public:
     // the plane facing the camera through the point (axis −1), or along the shells' axis 0, 1, 2 only. `orientation`
     // turns the style into the shells' space (style_orientation). One undo step; throws unless one cluster is selected.
     void drag_point(const Camera& camera, const glm::mat3& orientation, int point, glm::dvec2 from, glm::dvec2 to, int axis);
-    // A paint stroke starts: one undo step.
+    // A paint stroke starts: one undo step (its dabs: painting().dab).
     void begin_stroke();
+    // No paint: the parameters' σa again, as a stroke (undoable).
+    void clear_paint();
     bool undo();  // false when there is nothing to undo
     bool redo();
 
@@ -58,6 +60,8 @@ private:
     };
     Snapshot current() const;
     void restore(Snapshot s);
+    void push_step();  // what is now, as the step undo goes back to; the redo steps dropped
+    bool step(std::vector<Snapshot>& from, std::vector<Snapshot>& to);  // undo (from undo_ to redo_) or redo
     std::shared_ptr<const HairStyle> style_;
     std::uint64_t style_version_ = 0;
     Painting painting_;

@@ -7,11 +7,6 @@
 
 namespace coif {
 
-void Painting::begin_stroke() {
-    undo_.push_back(map_);
-    redo_.clear();
-}
-
 bool Painting::dab(const Camera& camera, const PreparedShells& shells, double x, double y, const Brush& brush, glm::vec3 base) {
     std::optional<AbsorptionMap> map = map_;
     if (!map) map = AbsorptionMap(static_cast<int>(shells.clusters()), kSamples, base);
@@ -36,27 +31,6 @@ bool Painting::dab(const Camera& camera, const PreparedShells& shells, double x,
     for (std::size_t i = 0; i < weight.size(); ++i)
         if (weight[i] > 0.0f) map->sigma_a[i] = glm::mix(map->sigma_a[i], brush.sigma_a, weight[i]);
     map_ = std::move(map);
-    return true;
-}
-
-void Painting::clear() {
-    begin_stroke();
-    map_.reset();
-}
-
-bool Painting::undo() {
-    if (undo_.empty()) return false;
-    redo_.push_back(std::move(map_));
-    map_ = std::move(undo_.back());
-    undo_.pop_back();
-    return true;
-}
-
-bool Painting::redo() {
-    if (redo_.empty()) return false;
-    undo_.push_back(std::move(map_));
-    map_ = std::move(redo_.back());
-    redo_.pop_back();
     return true;
 }
 

@@ -1,11 +1,10 @@
 #pragma once
 // Painting absorption onto the shells: the painted map (models/absorption_map.h, what `coif render --absorption`
 // reads), a brush that moves the map's columns under a disc of pixels toward its σa (the hair under each pixel
-// picked by online/shells/shell_pick.h), and the strokes' undo and redo. GL-free; the viewer (online/window/) draws
-// with map().
+// picked by online/shells/shell_pick.h). GL-free; the viewer (online/window/) draws with map(). The strokes' undo and
+// redo are the authoring's history (online/shells/authoring.h), which holds cluster edits too.
 #include <glm/glm.hpp>
 #include <optional>
-#include <vector>
 
 #include "models/absorption_map.h"
 #include "models/core/camera.h"
@@ -29,23 +28,15 @@ public:
     // The painted map, or null before any paint (σa then comes from the parameters).
     const AbsorptionMap* map() const { return map_ ? &*map_ : nullptr; }
 
-    // A stroke starts: what it changes is undone in one step (and the redo steps are dropped).
-    void begin_stroke();
     // One dab centred on image pixel (x, y) (top-left origin) of `camera`'s image: each hair point under the disc is
     // moved toward brush.sigma_a by strength × (1 − r/(radius + 1)) at the column nearest its t. The first dab makes
     // the map, `base` everywhere (the parameters' σa). False when the disc met no hair.
     bool dab(const Camera& camera, const PreparedShells& shells, double x, double y, const Brush& brush, glm::vec3 base);
-    // No paint: the parameters' σa again (undoable).
-    void clear();
-    bool undo();  // false when there is nothing to undo
-    bool redo();
-    // The map set as it is, outside the strokes' history (the viewer's history, online/shells/authoring.h, restores
-    // maps this way: a cluster edit adds or removes rows).
+    // The map set as it is (null: no paint; the authoring's history restores maps this way).
     void replace(std::optional<AbsorptionMap> map) { map_ = std::move(map); }
 
 private:
     std::optional<AbsorptionMap> map_;
-    std::vector<std::optional<AbsorptionMap>> undo_, redo_;  // the map before each stroke, and after each undo
 };
 
 }  // namespace coif

@@ -670,8 +670,7 @@ private:
         if (ImGui::Button("redo (Ctrl+Y)")) redo();
         ImGui::SameLine();
         if (ImGui::Button("clear") && authoring_.map()) {
-            authoring_.begin_stroke();
-            authoring_.painting().replace(std::nullopt);
+            authoring_.clear_paint();
             apply_paint();
         }
         save_row("map file", absorption_path_, sizeof absorption_path_, "save map", "coif render --absorption",

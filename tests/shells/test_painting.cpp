@@ -1,9 +1,11 @@
 // Picking the shells under a pixel (online/shells/shell_pick.h) and painting absorption with it
 // (online/shells/painting.h): a ray through the hair meets its outer layer at the right t, one that misses meets
-// nothing, a dab changes only the columns under it, and strokes undo and redo exactly.
+// nothing, a dab changes only the columns under it, and strokes undo and redo exactly (in the authoring's history,
+// online/shells/authoring.h, which is the painting's).
 #include <gtest/gtest.h>
 
 #include "online/scene/cook.h"
+#include "online/shells/authoring.h"
 #include "online/shells/painting.h"
 #include "online/shells/shell_pick.h"
 #include "tests/online/shell_test_scene.h"
@@ -35,13 +37,14 @@ TEST(Painting, ADabChangesTheColumnsUnderItAndStrokesUndoExactly) {
     const PreparedShells& p = cooked().shells;
     const Camera camera = Camera::orbit(p.bounds_min, p.bounds_max, 0.0f, 0.0f, 96, 64);
     const glm::vec3 base(0.4f, 0.6f, 1.0f);
-    Painting painting;
+    Authoring history(std::nullopt, std::nullopt);  // the strokes' history; painting needs no style
+    Painting& painting = history.painting();
     EXPECT_EQ(painting.map(), nullptr);
     Brush brush;
     brush.radius = 3;
     brush.strength = 1;
     brush.sigma_a = glm::vec3(8.0f);
-    painting.begin_stroke();
+    history.begin_stroke();
     ASSERT_TRUE(painting.dab(camera, p, 48, 32, brush, base));  // the image's centre: the hair
     ASSERT_NE(painting.map(), nullptr);
     const AbsorptionMap& m = *painting.map();
@@ -54,21 +57,21 @@ TEST(Painting, ADabChangesTheColumnsUnderItAndStrokesUndoExactly) {
     EXPECT_EQ(m.at(0, 0), base) << "the root is far from the dab";
     const AbsorptionMap painted = m;
     // A dab beside the hair meets nothing and changes nothing.
-    painting.begin_stroke();
+    history.begin_stroke();
     EXPECT_FALSE(painting.dab(camera, p, 1, 1, brush, base));
     EXPECT_EQ(painting.map()->sigma_a, painted.sigma_a);
     // Undo twice: unpainted again; redo: the painted map, exactly.
-    EXPECT_TRUE(painting.undo());
-    EXPECT_TRUE(painting.undo());
+    EXPECT_TRUE(history.undo());
+    EXPECT_TRUE(history.undo());
     EXPECT_EQ(painting.map(), nullptr);
-    EXPECT_FALSE(painting.undo());
-    EXPECT_TRUE(painting.redo());
+    EXPECT_FALSE(history.undo());
+    EXPECT_TRUE(history.redo());
     ASSERT_NE(painting.map(), nullptr);
     EXPECT_EQ(painting.map()->sigma_a, painted.sigma_a);
     // Clearing is a stroke too.
-    painting.clear();
+    history.clear_paint();
     EXPECT_EQ(painting.map(), nullptr);
-    EXPECT_TRUE(painting.undo());
+    EXPECT_TRUE(history.undo());
     EXPECT_EQ(painting.map()->sigma_a, painted.sigma_a);
 }
 
