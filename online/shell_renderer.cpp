@@ -163,7 +163,6 @@ ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>
     if (cooked.shadow_strand_cluster.size() + 1 == cooked.shadow_source.offsets.size() && !cooked.shadow_source.points.empty()) {
         m.shadow_source = std::move(cooked.shadow_source);
         m.shadow_strand_cluster = std::move(cooked.shadow_strand_cluster);
-        m.moved_strands = m.shadow_source;
     }
     stats_.grid_x = m.grid.dims.x;
     stats_.grid_y = m.grid.dims.y;
@@ -264,6 +263,7 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
     // The grid's strands moved with their clusters and voxelized again, with the body (set_body) in it.
     const auto regrid = Clock::now();
     const Strands& from = m.shadow_source;
+    if (m.moved_strands.points.empty()) m.moved_strands = from;  // the first motion: a copy to move (a still hair needs none)
     for (std::size_t i = 0; i < m.shadow_strand_cluster.size(); ++i) {
         const glm::mat4& T = transforms[m.shadow_strand_cluster[i]];
         for (std::uint32_t k = from.offsets[i]; k < from.offsets[i + 1]; ++k)
