@@ -46,11 +46,11 @@ AnimationResult run_animation(const SceneOptions& scene, const ShellOptions& she
     settings.timed = true;
     const BodyMesh body = *inputs.body;
     const glm::mat3 hair_orientation = style_orientation(inputs.style);
-    const glm::mat3 body_orientation = hair_orientation * style_source_rotation(inputs.style);
+    const glm::mat3 body_turn = body_orientation(inputs.style);
     const std::optional<AbsorptionMap> absorption = shell.absorption_map(inputs);
     gl::HairScene hs(hair_scene_desc(scene, std::move(inputs), shell.db, shell.lighting_rows, absorption ? &*absorption : nullptr));
     gl::ShellRenderer& renderer = *hs.renderer;
-    gl::HairMotion motion(hs.style, body, hair_orientation, body_orientation);
+    gl::HairMotion motion(hs.style, body, hair_orientation, body_turn);
     if (spec.dynamics) motion.simulate(*spec.dynamics);
 
     AnimationResult out;

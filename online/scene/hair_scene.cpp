@@ -62,8 +62,7 @@ HairScene::HairScene(HairSceneDesc desc)
     : lights_label(std::move(desc.lights_label)), lights(std::move(desc.lights)), style(std::move(desc.style)) {
     ShellView v;
     // A body is turned as the style's strands were on import and are when drawn; an asset holds that turn.
-    const glm::mat3 body_orientation =
-        desc.cooked ? desc.cooked->body_orientation : style_orientation(style) * style_source_rotation(style);
+    const glm::mat3 body_turn = desc.cooked ? desc.cooked->body_orientation : coif::body_orientation(style);
     if (desc.cooked) {
         database_label = desc.cooked->database;
         if (desc.headless) context = Context::headless();
@@ -77,10 +76,9 @@ HairScene::HairScene(HairSceneDesc desc)
     }
     renderer = std::move(v.renderer);
     if (desc.body) {
-        const glm::mat3& orientation = body_orientation;
-        renderer->set_body(&*desc.body, orientation);
+        renderer->set_body(&*desc.body, body_turn);
         if (!desc.framing.box) {  // frame the character: the hair's box and the body's
-            const auto [lo, hi] = desc.body->bounds(orientation);
+            const auto [lo, hi] = desc.body->bounds(body_turn);
             v.frame_min = glm::min(v.frame_min, lo);
             v.frame_max = glm::max(v.frame_max, hi);
             v.camera = desc.framing.view.around(v.frame_min, v.frame_max);

@@ -76,6 +76,8 @@ glm::mat3 style_orientation(const HairStyle& style) {
     return hang_axis_rotation(st);
 }
 
+glm::mat3 body_orientation(const HairStyle& style) { return style_orientation(style) * style_source_rotation(style); }
+
 std::vector<glm::vec3> cluster_roots(const HairStyle& style, const glm::mat3& orientation) {
     std::vector<glm::vec3> roots;
     roots.reserve(style.clusters.size());

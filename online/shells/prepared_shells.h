@@ -89,6 +89,9 @@ struct PreparedShells {
 // y-up frame already (source "axes": kStyleAxesYUp, written by `coif style import`: it oriented the strands, or their
 // format states its axes, as TressFX's does, whose mohawk sweeps along −z and must not be turned).
 glm::mat3 style_orientation(const HairStyle& style);
+// What turns a character's body, in the frame of the strand file the style was imported from, into the shells' space:
+// style_orientation · style_source_rotation (the turn the strands had on import, then the one they have when drawn).
+glm::mat3 body_orientation(const HairStyle& style);
 // Each cluster's root (its axis at t = 0), turned by `orientation` into the shells' space: where skinning keeps it on the
 // skin (models/skinning.h cluster_transform).
 std::vector<glm::vec3> cluster_roots(const HairStyle& style, const glm::mat3& orientation);

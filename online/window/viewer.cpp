@@ -501,7 +501,7 @@ private:
             scene_.renderer = std::move(v.renderer);  // the camera keeps its framing: an edit does not move the view
             scene_.style = st;
             scene_.renderer->set_lights(scene_.lights);
-            if (body_) scene_.renderer->set_body(&*body_, style_orientation(st) * style_source_rotation(st));
+            if (body_) scene_.renderer->set_body(&*body_, body_orientation(st));
             cooked_version_ = authoring_.style_version();
             recook_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
             log_message(LogLevel::info, "coif view: cooked the edited style in " + std::to_string(static_cast<int>(recook_ms_)) +
