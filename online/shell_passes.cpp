@@ -255,7 +255,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
 
 // ---- ShellsPass ------------------------------------------------------------------------------------
 
-const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& L,
+const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& L,
                                            DepthTest depth) {
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
@@ -270,13 +270,14 @@ const Program& ShellsPass::shading_program(bool abuffer, const ShellSettings& s,
         const std::vector<std::string> variant = LightingPass::variant_defines(s);
         defines.insert(defines.end(), variant.begin(), variant.end());
     }
-    std::string key = abuffer ? "abuffer" : "blend";
+    // The fragment shader of each compositing: exact appends to the lists, weighted accumulates, the others blend.
+    const char* fragment = mode == Compositing::exact      ? "shaders/gl/shell_abuffer.frag"
+                           : mode == Compositing::weighted ? "shaders/gl/shell_weighted.frag"
+                                                           : "shaders/gl/shell.frag";
+    std::string key = fragment;
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = programs_[key];
-    if (!slot)
-        slot = std::make_unique<Program>(
-            std::vector<std::string>{"shaders/gl/shell.vert", abuffer ? "shaders/gl/shell_abuffer.frag" : "shaders/gl/shell.frag"},
-            defines);
+    if (!slot) slot = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell.vert", fragment}, defines);
     return *slot;
 }
 
@@ -289,11 +290,14 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                         const ShellSettings& s, bool floor_only, const LightingPass& lighting) {
     const DiskLayout& L = gpu.layout;
     const bool exact = !floor_only && s.compositing == Compositing::exact;
+    const bool weighted = !floor_only && s.compositing == Compositing::weighted;
+    const bool own_targets = exact || weighted;  // drawn into targets of the viewport's size, then resolved into the frame
     if (exact) make_lists();
+    if (weighted && !weighted_) weighted_ = std::make_unique<WeightedBlend>();
     const FrameTarget& t = d.target;
     const int width = t.viewport.z, height = t.viewport.w;
     const DepthTest depth = floor_only || t.scene_depth == 0 ? DepthTest::none : t.depth_test;
-    const Program& prog = floor_only ? floor_ : shading_program(exact, s, gpu.lighting_rows, L, depth);
+    const Program& prog = floor_only ? floor_ : shading_program(s.compositing, s, gpu.lighting_rows, L, depth);
     prog.use();
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
     const glm::mat4 vp = pixel_shift(d.jitter, width, height) * view.projection * view.view;
@@ -322,9 +326,32 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         if (depth != DepthTest::none) {
             glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
             glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
-            // The lists' framebuffer is the viewport's size; a blended draw goes straight into the host's framebuffer.
-            const glm::ivec2 offset = exact ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
+            // The lists' and the weighted targets' framebuffer is the viewport's size; a blended draw goes straight into
+            // the host's framebuffer.
+            const glm::ivec2 offset = own_targets ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
             glUniform2i(prog.uniform("u_scene_depth_offset"), offset.x, offset.y);
+        }
+    }
+    // Clusters wholly outside the view make no fragment: skipped, the image is the same. The weighted compositing
+    // normalises its fragments' eye distances to the range of the clusters' boxes.
+    std::vector<char> visible(shells.clusters(), 1);
+    if (s.cull || weighted) {
+        if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
+        const std::vector<ClusterBox> boxes = cluster_boxes(shells, prototype_boxes_);
+        float nearest = std::numeric_limits<float>::max(), farthest = 0.0f;
+        for (std::size_t c = 0; c < boxes.size(); ++c) {
+            if (s.cull) visible[c] = box_in_view(vp, boxes[c]);
+            if (weighted && visible[c])
+                for (const glm::vec3& corner : boxes[c]) {
+                    const float e = glm::distance(corner, view.eye);
+                    nearest = std::min(nearest, e);
+                    farthest = std::max(farthest, e);
+                }
+        }
+        if (weighted) {
+            // A box's nearest corner can be nearer than any fragment (or behind the eye, within the box): clamped at 0.
+            nearest = farthest > 0.0f ? std::max(0.0f, nearest) : 0.0f;
+            glUniform2f(prog.uniform("u_depth_range"), nearest, 1.0f / std::max(farthest - nearest, 1e-6f));
         }
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.instances.id());
@@ -341,6 +368,13 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));
         glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
         glDisable(GL_BLEND);
+    } else if (weighted) {  // accumulate every fragment, in any order (online/weighted_blend.h)
+        if (d.first) {
+            glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer_);
+            weighted_->begin(width, height);
+        } else {
+            weighted_->bind();
+        }
     } else {
         glViewport(t.viewport.x, t.viewport.y, width, height);
         glEnable(GL_BLEND);
@@ -368,13 +402,6 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
             static_cast<GLuint>(c));
     };
-    // Clusters wholly outside the view make no fragment: skipped, the image is the same.
-    std::vector<char> visible(shells.clusters(), 1);
-    if (s.cull) {
-        if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
-        const std::vector<ClusterBox> boxes = cluster_boxes(shells, prototype_boxes_);
-        for (std::size_t c = 0; c < boxes.size(); ++c) visible[c] = box_in_view(vp, boxes[c]);
-    }
     drawn_ = 0;
     for (std::size_t c : order) {
         if (!visible[c]) continue;
@@ -388,8 +415,8 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     double resolve_ms = 0;
-    if (exact && d.last) {  // the per-pixel sort and "over" of the lists, into the caller's framebuffer
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    if (own_targets && d.last) {  // the lists' per-pixel sort and "over", or the weighted mean, into the caller's framebuffer
+        if (exact) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         Clock::time_point t_resolve;
         if (s.timed) {
             glFinish();
@@ -397,7 +424,10 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         }
         glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target_framebuffer_));
         glViewport(t.viewport.x, t.viewport.y, width, height);
-        lists_->resolve(s.background, t.over, glm::ivec2(t.viewport.x, t.viewport.y));
+        if (exact)
+            lists_->resolve(s.background, t.over, glm::ivec2(t.viewport.x, t.viewport.y));
+        else
+            weighted_->resolve(s.background, t.over, glm::ivec2(t.viewport.x, t.viewport.y));
         if (s.timed) {
             glFinish();
             resolve_ms = wall_ms_since(t_resolve);

@@ -26,6 +26,7 @@
 #include "online/shells/record_atlas.h"
 #include "online/shells/shadow_grid.h"
 #include "online/shells/shell_settings.h"
+#include "online/weighted_blend.h"
 
 namespace coif::gl {
 
@@ -131,9 +132,9 @@ private:
     LightingTextures tables_;  // the lighting module's tables (online/lighting_uniforms.h)
 };
 
-// One draw of the shells within a frame (ShellsPass::draw): the target, and for the exact compositing, whether this
-// draw begins the frame's fragment lists and whether it ends them (resolves them into the target); several draws (the
-// instances of the hair) between share one set of lists and so composite exactly with each other.
+// One draw of the shells within a frame (ShellsPass::draw): the target, and for the exact and weighted compositings,
+// whether this draw begins the frame's fragment lists (or weighted sums) and whether it ends them (resolves them into the
+// target); several draws (the instances of the hair) between share one set and so composite with each other.
 struct ShellDraw {
     FrameTarget target;
     bool first = true, last = true;
@@ -144,9 +145,9 @@ struct ShellDraw {
 class ShellsPass {
 public:
     // Draws the shells seen from `view` into the framebuffer bound for drawing (exact compositing: into the fragment
-    // lists, resolved into that framebuffer by the draw marked `last`). `floor`: the same shells in the same order with
-    // a trivial shader (coif bench render's floor). Returns the resolve's wall time in ms with s.timed and exact
-    // compositing, else 0.
+    // lists; weighted: into the weighted sums; either resolved into that framebuffer by the draw marked `last`).
+    // `floor`: the same shells in the same order with a trivial shader (coif bench render's floor). Returns the
+    // resolve's wall time in ms with s.timed and exact or weighted compositing, else 0.
     double draw(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, const ShellDraw& d,
                 const ShellSettings& s, bool floor, const LightingPass& lighting);
     // The exact compositing's lists (made on first use), or null before.
@@ -157,12 +158,13 @@ public:
     std::size_t clusters_drawn() const { return drawn_; }
 
 private:
-    const Program& shading_program(bool abuffer, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
+    const Program& shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
                                    DepthTest depth);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
     std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use
     std::unique_ptr<FragmentLists> lists_;
-    GLint target_framebuffer_ = 0;  // the exact compositing's: bound when its first draw began
+    std::unique_ptr<WeightedBlend> weighted_;  // the weighted compositing's targets (made on first use)
+    GLint target_framebuffer_ = 0;  // the exact and weighted compositings': bound when their first draw began
     std::size_t drawn_ = 0;
     std::vector<PrototypeBox> prototype_boxes_;  // of the shells drawn (their meshes do not change), made on first use
 };

@@ -460,9 +460,9 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
         return render_tiles(camera, later);
     };
     const int f = supersampling(settings);
-    if (f == 1) {  // the blended modes' MSAA, or one exact frame (its lists hold one sample per pixel)
+    if (f == 1) {  // the blended modes' MSAA, or one exact or weighted frame (their targets hold one sample per pixel)
         RenderTarget target(camera.width, camera.height, GL_RGBA16F,
-                            settings.compositing == Compositing::exact ? 1 : settings.samples);
+                            draws_single_sample(settings.compositing) ? 1 : settings.samples);
         Image image = draw_whole(target);
         timings_.lighting_wall_ms = lighting_ms;
         return image;

@@ -20,7 +20,9 @@
 //             back faces outer → inner, then front faces inner → outer (the transparent core shows
 //             what lies behind), blended "over" in that order: exact within one cluster, wrong where
 //             clusters interpenetrate (22 dB against exact on the default scene);
-//   unsorted  the same without the cluster sort (style order), for error figures.
+//   unsorted  the same without the cluster sort (style order), for error figures;
+//   weighted  weighted blended order-independent transparency (online/weighted_blend.h): every fragment added, in
+//             any order, into a weighted mean colour and an exact transmittance; bounded memory, single sample.
 // Nothing per frame runs on the CPU beyond the sort and the draw calls.
 //
 // Shadows between clusters (DESIGN.md decision 5): the style's strands (models/style_strands.h)
@@ -83,7 +85,7 @@ struct ShellStats {
 struct ShellTimings {
     double shadows_ms = 0;  // wall time of the shadow pass (glFinish); 0 when cached
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
-    double resolve_wall_ms = 0;  // of shells_wall_ms, the exact compositing's resolve (timed, Compositing::exact)
+    double resolve_wall_ms = 0;  // of shells_wall_ms, the exact or weighted compositing's resolve (timed)
     std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
     int tiles = 1;              // render()'s last frame: 1, or the tiles it was drawn in (beyond the fragment storage)
     int lighting_step = 1;      // the last draw's step along the lighting samples (ShellSettings::lighting_step, as the style allows)
@@ -144,8 +146,8 @@ public:
     // Throws coif::Error::parameter for a bad setting, viewport or transform.
     void draw_frame(const glm::mat4& view, const glm::mat4& projection, std::span<const SrbfLight> lights,
                     const ShellSettings& settings, const FrameTarget& target, std::span<const glm::mat4> instances = {});
-    // Renders into an offscreen target of the camera's size and returns the linear RGBA image; the exact
-    // compositing with samples > 1 averages f² frames, f = round(√samples), shifted to the pixel centres of
+    // Renders into an offscreen target of the camera's size and returns the linear RGBA image; the exact and weighted
+    // compositings with samples > 1 average f² frames, f = round(√samples), shifted to the pixel centres of
     // an f-times finer grid (supersampling with a box filter, at one frame's memory). The lighting pass runs for the
     // first frame only: the others have the same eye, lights and settings (timings().lighting_wall_ms is that pass). An exact frame that
     // overflows its fragment storage is drawn again with the storage grown; one that still overflows (the GPU's

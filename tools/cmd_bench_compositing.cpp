@@ -38,10 +38,11 @@ void add_bench_compositing(CLI::App& root) {
         "Error and cost of the shell renderer's compositing modes (004 eq. 14, DESIGN.md decision 4)\n"
         "Captures every shell fragment of the view in per-pixel lists (single sample), composites them exactly on the\n"
         "CPU (per pixel sorted by eye distance, \"over\" back to front, double precision), and compares each mode's\n"
-        "image with it: sorted (clusters back to front), unsorted and exact (the lists sorted on the GPU), at 1 sample,\n"
-        "then sorted at --msaa samples (MSAA also changes edge coverage, which the 1-sample reference does not have).\n"
+        "image with it: sorted (clusters back to front), unsorted, exact (the lists sorted on the GPU) and weighted\n"
+        "(weighted blended, bounded memory), at 1 sample, then sorted at --msaa samples (MSAA also changes edge coverage,\n"
+        "which the 1-sample reference does not have).\n"
         "PSNR on linear RGB, peak = 99th percentile of the reference's largest channel on the hair pixels (those with\n"
-        "a fragment); wall time of the shells pass with its compositing and of the exact mode's resolve alone (each\n"
+        "a fragment); wall time of the shells pass with its compositing and of the exact or weighted resolve alone (each\n"
         "waited for on the GPU, as `coif bench render`: llvmpipe's timer queries misattribute; the modes take turns, median of\n"
         "--frames after a warm-up round).");
     o->scene.add_to(cmd);
@@ -71,7 +72,8 @@ void add_bench_compositing(CLI::App& root) {
 
         std::vector<Row> rows = {{"sorted", coif::gl::Compositing::sorted, 1},
                                  {"unsorted", coif::gl::Compositing::unsorted, 1},
-                                 {"exact (GPU lists)", coif::gl::Compositing::exact, 1}};
+                                 {"exact (GPU lists)", coif::gl::Compositing::exact, 1},
+                                 {"weighted", coif::gl::Compositing::weighted, 1}};
         if (o->msaa > 1) rows.push_back({"sorted", coif::gl::Compositing::sorted, o->msaa});
         nlohmann::ordered_json out = {
             {"renderer", scene.context->renderer()}, {"width", cam.width}, {"height", cam.height},

@@ -175,8 +175,8 @@ void ShellOptions::add_to(CLI::App* app) {
         ->check(CLI::Range(0, 64))
         ->capture_default_str();
     app->add_option("--samples", samples,
-                    "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) round(sqrt(N))^2 "
-                    "frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")
+                    "Samples per pixel: MSAA with --compositing sorted/unsorted; with exact (the default) and weighted "
+                    "round(sqrt(N))^2 frames shifted within the pixel are averaged (N = 4: 2x2, 4x the time)")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
     std::string presets;
@@ -186,9 +186,10 @@ void ShellOptions::add_to(CLI::App* app) {
                     "too as \"quality\"; --compositing overrides it):" + presets)
         ->check(CLI::IsMember(gl::quality_names()));
     app->add_option("--compositing", compositing,
-                    "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), sorted "
-                    "(clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
-        ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
+                    "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), weighted "
+                    "(weighted blended order-independent transparency: bounded memory, no order; supersampled as exact), "
+                    "sorted (clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
+        ->check(CLI::IsMember(gl::compositing_names()));
     app->add_option("--radius", radius,
                     "Fibre radius in scene units, as coif reference --radius: the strand lines' pixel coverage 2r/pixel, and "
                     "the fibres that the shells' shadows between clusters count (the --params key fiber_radius; 0 = the "

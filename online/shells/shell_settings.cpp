@@ -10,13 +10,13 @@
 namespace coif::gl {
 
 int supersampling(const ShellSettings& settings) {
-    if (settings.compositing != Compositing::exact) return 1;
+    if (!draws_single_sample(settings.compositing)) return 1;
     return std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
 }
 
 namespace {
 // Every compositing mode, in the enum's order (the parameters file's choice index is the enum's value).
-constexpr Compositing kCompositings[] = {Compositing::sorted, Compositing::unsorted, Compositing::exact};
+constexpr Compositing kCompositings[] = {Compositing::sorted, Compositing::unsorted, Compositing::exact, Compositing::weighted};
 }  // namespace
 
 const char* compositing_name(Compositing c) {
@@ -24,14 +24,21 @@ const char* compositing_name(Compositing c) {
         case Compositing::sorted: return "sorted";
         case Compositing::unsorted: return "unsorted";
         case Compositing::exact: return "exact";
+        case Compositing::weighted: return "weighted";
     }
     return "?";
+}
+
+std::vector<std::string> compositing_names() {
+    std::vector<std::string> names;
+    for (Compositing c : kCompositings) names.emplace_back(compositing_name(c));
+    return names;
 }
 
 Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place) {
     for (Compositing c : kCompositings)
         if (text == compositing_name(c)) return c;
-    throw Error(file, place, "'" + text + "' is not sorted, unsorted or exact");
+    throw Error(file, place, "'" + text + "' is not sorted, unsorted, exact or weighted");
 }
 
 const QualityPreset& quality_preset(Quality q) {
@@ -107,9 +114,9 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(int_param<S>("debug", 0, 4, "0 shaded, 1 alpha only, 2 unlit re, 3 lighting C_0 alpha, 4 shadow AOV",
                              [](auto& s) -> auto& { return s.debug; }));
     Param<S> compositing{"compositing", ParamKind::choice, "", 0, 0, false,
-                         "exact (per-pixel fragment lists), sorted (clusters back to front) or unsorted",
+                         "exact (per-pixel fragment lists), weighted (weighted blended, bounded memory), sorted (clusters back to front) or unsorted",
                          {}, {}, {}, {}};
-    for (Compositing c : kCompositings) compositing.names.emplace_back(compositing_name(c));
+    compositing.names = compositing_names();
     compositing.get = [](const S& s, int) { return static_cast<double>(s.compositing); };
     compositing.set = [](S& s, int, double v) { s.compositing = static_cast<Compositing>(static_cast<int>(v)); };
     t.push_back(compositing);

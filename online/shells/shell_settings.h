@@ -16,10 +16,14 @@ namespace coif::gl {
 
 inline constexpr int kMaxShellNeighbours = 4;  // records per sector kept for the GPU
 
-// How the shells are composited (see the header comment; docs/renderer.md decision 4).
-enum class Compositing { sorted, unsorted, exact };
+// How the shells are composited (docs/renderer.md decision 4): sorted (clusters back to front, blended), unsorted (blended
+// in the style's order), exact (per-pixel fragment lists, sorted), weighted (weighted blended order-independent
+// transparency: bounded memory, online/weighted_blend.h). New modes go at the end: the enum's value is the parameters
+// table's choice index.
+enum class Compositing { sorted, unsorted, exact, weighted };
 const char* compositing_name(Compositing c);
-// "sorted" | "unsorted" | "exact"; anything else throws coif::Error(file, place, …).
+std::vector<std::string> compositing_names();  // every mode's, in the enum's order (command lines' choices)
+// "sorted" | "unsorted" | "exact" | "weighted"; anything else throws coif::Error(file, place, …).
 Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place);
 
 struct ShellSettings {
@@ -43,7 +47,7 @@ struct ShellSettings {
     int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
     glm::vec3 background = kDefaultBackground;  // linear RGB behind the hair
-    int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact: render() averages round(√samples)² shifted frames
+    int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact, weighted: render() averages round(√samples)² shifted frames
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re), 4 shadow AOV
     // Decision 3's reference: every light evaluated per fragment (its own T, V and radial axis, re at each
@@ -104,8 +108,11 @@ void apply_quality(ShellSettings& settings, Quality q);
 // The preset whose choices `settings` has, if any.
 std::optional<Quality> quality_of(const ShellSettings& settings);
 
+// Whether a compositing draws into single-sample targets of its own (exact's lists, weighted's sums), which
+// ShellRenderer::render antialiases by supersampling; the blended modes draw into the frame and use its MSAA.
+inline bool draws_single_sample(Compositing c) { return c == Compositing::exact || c == Compositing::weighted; }
 // The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
-// 1..4, for the exact compositing (the blended modes use MSAA: 1).
+// 1..4, for the exact and weighted compositings (the blended modes use MSAA: 1).
 int supersampling(const ShellSettings& settings);
 
 // The parameters file: one JSON object, every key optional, read through shell_settings_table(): the hair's

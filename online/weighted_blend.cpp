@@ -1,0 +1,71 @@
+#include "online/weighted_blend.h"
+
+#include "models/core/error.h"
+
+namespace coif::gl {
+
+WeightedBlend::WeightedBlend() : resolve_({"shaders/gl/fullscreen.vert", "shaders/gl/weighted_resolve.frag"}) {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    framebuffer_ = Framebuffer(id);
+    empty_vao_ = make_vertex_array();
+    check_errors("WeightedBlend");
+}
+
+void WeightedBlend::begin(int width, int height) {
+    if (width != width_ || height != height_) {
+        accum_ = make_texture_2d(GL_RGBA32F, width, height);
+        revealage_ = make_texture_2d(GL_R32F, width, height);
+        glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, accum_.id(), 0);
+        glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT1, revealage_.id(), 0);
+        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(framebuffer_.id(), 2, buffers);
+        if (glCheckNamedFramebufferStatus(framebuffer_.id(), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error::parameter("OpenGL", "the weighted blend's framebuffer (RGBA32F + R32F) is incomplete");
+        width_ = width;
+        height_ = height;
+    }
+    const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+    glClearTexImage(accum_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    glClearTexImage(revealage_.id(), 0, GL_RED, GL_FLOAT, &one);
+    bind();
+}
+
+void WeightedBlend::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    glViewport(0, 0, width_, height_);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunci(0, GL_ONE, GL_ONE);
+    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+}
+
+void WeightedBlend::resolve(const glm::vec3& background, bool over, glm::ivec2 origin) {
+    resolve_.use();
+    glBindTextureUnit(0, accum_.id());
+    glBindTextureUnit(1, revealage_.id());
+    glUniform1i(resolve_.uniform("u_accum"), 0);
+    glUniform1i(resolve_.uniform("u_revealage"), 1);
+    glUniform2i(resolve_.uniform("u_origin"), origin.x, origin.y);
+    glUniform3fv(resolve_.uniform("u_background"), 1, &background.x);
+    glUniform1i(resolve_.uniform("u_over"), over ? 1 : 0);
+    if (over) {  // premultiplied "over" the frame; an sRGB target encodes the blended linear result
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+    } else {
+        glDisable(GL_BLEND);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(empty_vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    if (over) {
+        glDisable(GL_BLEND);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+    }
+    check_errors("WeightedBlend::resolve");
+}
+
+}  // namespace coif::gl
