@@ -66,7 +66,8 @@ TEST_F(ShellSettingsFile, CompositingModeByName) {
     EXPECT_EQ(gl::read_shell_settings(write("a.json", R"({"compositing": "unsorted"})")).compositing, gl::Compositing::unsorted);
     EXPECT_EQ(gl::read_shell_settings(write("b.json", R"({"compositing": "sorted"})")).compositing, gl::Compositing::sorted);
     EXPECT_EQ(gl::read_shell_settings(write("c.json", R"({"compositing": "exact"})")).compositing, gl::Compositing::exact);
-    EXPECT_EQ(refusal(R"({"compositing": "peeled"})"), "JSON /compositing: 'peeled' is not sorted, unsorted or exact");
+    EXPECT_EQ(gl::read_shell_settings(write("d.json", R"({"compositing": "weighted"})")).compositing, gl::Compositing::weighted);
+    EXPECT_EQ(refusal(R"({"compositing": "peeled"})"), "JSON /compositing: 'peeled' is not sorted, unsorted, exact or weighted");
     EXPECT_EQ(refusal(R"({"compositing": true})").rfind("JSON /compositing: ", 0), 0u);
 }
 
