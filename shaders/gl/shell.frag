@@ -3,11 +3,11 @@
 #include "shaders/gl/shell_shade.glsl"
 #include "shaders/gl/scene_depth.glsl"
 
-in vec3 v_position;
-in vec3 v_tangent;
-in vec3 v_normal;
-in vec3 v_axis_normal;
-in vec2 v_texcoord;
+centroid in vec3 v_position;
+centroid in vec3 v_tangent;
+centroid in vec3 v_normal;
+centroid in vec3 v_axis_normal;
+centroid in vec2 v_texcoord;
 flat in uvec2 v_info;
 
 layout(location = 0) out vec4 o_color;

@@ -64,14 +64,14 @@
 #endif
 #include "shaders/gl/shell_lighting_fetch.glsl"
 #if SHELL_LIGHTING == 1
-in vec4 v_L0;
-in vec4 v_L1;
-in vec4 v_L2;
-in vec4 v_L3;
-in vec4 v_L4;
-in vec4 v_L5;
-in vec4 v_L6;
-in float v_L7;
+centroid in vec4 v_L0;
+centroid in vec4 v_L1;
+centroid in vec4 v_L2;
+centroid in vec4 v_L3;
+centroid in vec4 v_L4;
+centroid in vec4 v_L5;
+centroid in vec4 v_L6;
+centroid in float v_L7;
 #endif
 
 struct ShellSector {
