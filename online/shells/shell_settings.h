@@ -84,9 +84,10 @@ struct QualityPreset {
     bool one_tangent;  // light every fibre along its cluster's axis (tangent_spread 0) instead of the measured tilts
 };
 inline constexpr QualityPreset kQualityPresets[] = {
-    {Quality::low, "low", "clusters sorted and blended, one record per sector, re's first harmonic, a quarter of the "
-                          "lighting samples where the clusters are smooth, fibres lit along the axis (previews, dragging)",
-     Compositing::sorted, 1, 1, 4, true},
+    {Quality::low, "low", "weighted blended compositing (bounded memory), one record per sector, re's first harmonic, a "
+                          "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis "
+                          "(previews, dragging)",
+     Compositing::weighted, 1, 1, 4, true},
     {Quality::medium, "medium",
      "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples where the "
      "clusters are smooth",
