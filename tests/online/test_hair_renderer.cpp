@@ -83,37 +83,43 @@ struct Scene {
 };
 
 TEST(HairRenderer, BlendsOverTheHostFrameAsTheStandaloneImageOverItsBackground) {
-    Scene scene;
-    HairRenderer& hr = scene.hr;
-    const Camera& cam = scene.cam;
-    const std::vector<SrbfLight>& lights = scene.lights;
-    HostFrame& host = scene.host;
-    hr.draw(inputs(cam, host, lights));
-    const std::vector<glm::vec4> got = host.read();
-    // The same hair drawn alone over a background of the host's clear colour (render(): an RGBA16F target).
-    gl::ShellRenderer alone{CookedShells(cooked())};
-    alone.set_lights(lights);
-    gl::ShellSettings s = hr.defaults();
-    s.samples = 1;
-    s.background = glm::vec3(kClear);
-    const Image ref = alone.render(cam, s);
-    double worst = 0, peak = 0;
-    std::size_t covered = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const glm::vec4& g = got[static_cast<std::size_t>(H - 1 - y) * W + x];
-            covered += hair(g);
-            for (int c = 0; c < 3; ++c) {
-                const double r = ref.pixels[(static_cast<std::size_t>(y) * W + x) * 4 + c];
-                worst = std::max(worst, std::abs(r - g[c]));
-                peak = std::max(peak, r);
+    // For the default compositing (exact) and the bounded one (weighted): both resolve premultiplied over the frame.
+    for (const gl::Compositing mode : {gl::Compositing::exact, gl::Compositing::weighted}) {
+        Scene scene;
+        HairRenderer& hr = scene.hr;
+        const Camera& cam = scene.cam;
+        const std::vector<SrbfLight>& lights = scene.lights;
+        HostFrame& host = scene.host;
+        gl::ShellSettings s = hr.defaults();
+        s.compositing = mode;
+        FrameInputs f = inputs(cam, host, lights);
+        f.settings = &s;
+        hr.draw(f);
+        const std::vector<glm::vec4> got = host.read();
+        // The same hair drawn alone over a background of the host's clear colour (render(): an RGBA16F target).
+        gl::ShellRenderer alone{CookedShells(cooked())};
+        alone.set_lights(lights);
+        s.samples = 1;
+        s.background = glm::vec3(kClear);
+        const Image ref = alone.render(cam, s);
+        double worst = 0, peak = 0;
+        std::size_t covered = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const glm::vec4& g = got[static_cast<std::size_t>(H - 1 - y) * W + x];
+                covered += hair(g);
+                for (int c = 0; c < 3; ++c) {
+                    const double r = ref.pixels[(static_cast<std::size_t>(y) * W + x) * 4 + c];
+                    worst = std::max(worst, std::abs(r - g[c]));
+                    peak = std::max(peak, r);
+                }
             }
-        }
-    std::printf("over the host's frame vs alone over the same colour: max |diff| %.3g of a peak %.3g; %zu hair pixels\n", worst,
-                peak, covered);
-    EXPECT_GT(covered, static_cast<std::size_t>(W * H / 20));
-    // Only the reference's RGBA16F target rounds (relative 2⁻¹¹); the host's target is RGBA32F.
-    EXPECT_LE(worst, 2e-3 * peak);
+        std::printf("%s: over the host's frame vs alone over the same colour: max |diff| %.3g of a peak %.3g; %zu hair pixels\n",
+                    gl::compositing_name(mode), worst, peak, covered);
+        EXPECT_GT(covered, static_cast<std::size_t>(W * H / 20)) << gl::compositing_name(mode);
+        // Only the reference's RGBA16F target rounds (relative 2⁻¹¹); the host's target is RGBA32F.
+        EXPECT_LE(worst, 2e-3 * peak) << gl::compositing_name(mode);
+    }
 }
 
 TEST(HairRenderer, SceneDepthHidesTheHairBehindItInEitherConvention) {
