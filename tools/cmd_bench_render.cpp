@@ -55,7 +55,7 @@ void add_bench_render(CLI::App& root) {
     cmd->add_option("--lighting-rows", o->lighting_rows,
                    "Lighting samples per HSV along each cluster (0 = one per mesh row, the style's mesh[0])")
         ->check(CLI::Range(0, 64))->capture_default_str();
-    cmd->add_option("--samples", o->samples, "MSAA samples per pixel (sorted/unsorted compositing; the exact compositing draws 1)")->check(CLI::Range(1, 16))->capture_default_str();
+    cmd->add_option("--samples", o->samples, "MSAA samples per pixel (sorted/unsorted compositing; the exact and weighted compositings draw 1)")->check(CLI::Range(1, 16))->capture_default_str();
     cmd->add_option("--data", o->data, "Folder of .hair/.data models: each is fitted (coif style import) and benchmarked too")
         ->capture_default_str();
     cmd->add_option("--clusters", o->clusters, "Clusters fitted to each model")->check(CLI::Range(1, 100000))->capture_default_str();
