@@ -235,6 +235,43 @@ std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::
     return out;
 }
 
+std::optional<std::size_t> mirror_partner(const HairStyle& style, std::size_t cluster, int axis, double at, double tolerance) {
+    check_clusters(style, std::span(&cluster, 1));
+    if (axis < 0 || axis > 2) throw Error::parameter("mirror axis", "must be x, y or z");
+    const Cluster& from = style.clusters[cluster];
+    std::vector<glm::dvec3> reflected = from.shape->trajectory().control();
+    for (glm::dvec3& x : reflected) {
+        x = from.placement.apply(x);
+        x[axis] = 2.0 * at - x[axis];
+    }
+    std::optional<std::size_t> best;
+    double best_worst = tolerance;
+    for (std::size_t k = 0; k < style.clusters.size(); ++k) {
+        const Cluster& c = style.clusters[k];
+        if (k == cluster || k == from.prototype || c.instance_of) continue;
+        const auto& control = c.shape->trajectory().control();
+        if (control.size() != reflected.size()) continue;
+        double worst = 0;
+        for (std::size_t i = 0; i < control.size(); ++i) worst = std::max(worst, glm::distance(control[i], reflected[i]));
+        if (worst <= best_worst) best = k, best_worst = worst;
+    }
+    return best;
+}
+
+void mirror_onto(HairStyle& style, std::size_t cluster, std::size_t partner, int axis, double at) {
+    check_clusters(style, std::span(&cluster, 1));
+    check_clusters(style, std::span(&partner, 1));
+    if (axis < 0 || axis > 2) throw Error::parameter("mirror axis", "must be x, y or z");
+    if (!std::isfinite(at)) throw Error::parameter("mirror plane", "must be finite");
+    const Cluster& from = style.clusters[cluster];
+    if (partner == cluster || partner == from.prototype || style.clusters[partner].instance_of)
+        throw Error::parameter("mirror", style.clusters[partner].name + " cannot take " + from.name +
+                                             "'s mirror image (it is the cluster itself, its prototype, or an instance)");
+    const auto placed = from.placement.is_identity() ? from.shape : placed_shape(*from.shape, from.placement);
+    style.clusters[partner].shape = mirrored_shape(*placed, axis, at);
+    style.resolve();
+}
+
 void delete_clusters(HairStyle& style, std::span<const std::size_t> clusters, AbsorptionMap* absorption) {
     check_clusters(style, clusters);
     check_rows(style, absorption);

@@ -14,6 +14,7 @@
 // becomes −u, which reverses each ring's sectors and their density grids along s. `models.StyleEdit.*` checks every
 // edit's envelope against the similarity or reflection applied to the old one.
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -37,6 +38,15 @@ std::vector<std::size_t> duplicate_clusters(HairStyle& style, std::span<const st
 // "_mirror" (the bone weights copied: a character's left and right bones are not known here). Returns their indices.
 std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::size_t> clusters, int axis, double at,
                                          AbsorptionMap* absorption = nullptr);
+
+// The cluster that is `cluster`'s mirror image across x[axis] = at (the viewer's symmetry mode): a prototype of its own
+// (not an instance, not `cluster`'s prototype) whose trajectory has as many control points, each within `tolerance`
+// (style units) of `cluster`'s placed one reflected; the nearest such, or none.
+std::optional<std::size_t> mirror_partner(const HairStyle& style, std::size_t cluster, int axis, double at, double tolerance);
+// `partner`'s shape made the mirror image of `cluster`'s placed shape across x[axis] = at, as mirror_clusters makes it
+// (its name, density and instances kept): the symmetric side of an edit of `cluster`. Throws coif::Error::parameter
+// for a partner that is an instance, `cluster` itself or `cluster`'s prototype.
+void mirror_onto(HairStyle& style, std::size_t cluster, std::size_t partner, int axis, double at);
 
 // Removes `clusters`. An instance of a removed cluster keeps its place: it is re-pointed past it, and where a removed
 // prototype leaves instances the first of them becomes the prototype (its shape rewritten in place, exactly as

@@ -43,6 +43,26 @@ bool Authoring::pick(const Camera& camera, const PreparedShells& shells, double 
     return true;
 }
 
+std::optional<std::size_t> Authoring::symmetric_partner(std::size_t c) const {
+    if (!symmetry_ || !style_ || c >= style_->clusters.size()) return std::nullopt;
+    const Cluster& cl = style_->clusters[c];
+    const auto& control = cl.shape->trajectory().control();
+    double length = 0;
+    for (std::size_t i = 1; i < control.size(); ++i)
+        length += glm::distance(cl.placement.apply(control[i]), cl.placement.apply(control[i - 1]));
+    return mirror_partner(*style_, c, 0, roots_middle(*style_, 0), kSymmetryTolerance * length);
+}
+
+void Authoring::edit_cluster(std::size_t c, const std::function<void(HairStyle&)>& f) {
+    const std::optional<std::size_t> partner = symmetric_partner(c);
+    const double at = style_ ? roots_middle(*style_, 0) : 0.0;
+    edit([&](HairStyle& s, AbsorptionMap*) {
+        f(s);
+        if (partner) mirror_onto(s, c, *partner, 0, at);
+        return std::vector<std::size_t>{c};
+    });
+}
+
 void Authoring::edit(const Edit& f) {
     if (!style_) throw Error::parameter("edit", "a baked asset is view-only: open its style to edit it");
     HairStyle style = *style_;
@@ -81,10 +101,7 @@ void Authoring::drag_point(const Camera& camera, const glm::mat3& orientation, i
         delta = glm::dot(delta, e) * e;
     }
     const glm::dvec3 in_style = glm::dvec3(glm::transpose(orientation) * delta);  // a rotation: its inverse
-    edit([&](HairStyle& s, AbsorptionMap*) {
-        move_control_point(s, c, static_cast<std::size_t>(point), in_style);
-        return std::vector<std::size_t>{c};
-    });
+    edit_cluster(c, [&](HairStyle& s) { move_control_point(s, c, static_cast<std::size_t>(point), in_style); });
 }
 
 void Authoring::push_step() {

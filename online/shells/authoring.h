@@ -42,6 +42,16 @@ public:
     // view-only, or what `f` throws (then nothing changed).
     using Edit = std::function<std::vector<std::size_t>(HairStyle&, AbsorptionMap*)>;
     void edit(const Edit& f);
+    // An edit of cluster `c`'s shape (a control point, a profile), one undo step. In symmetry mode, the cluster that was
+    // its mirror image across the head's plane before the edit (x = the middle of the roots, the plane the viewer's
+    // mirror uses; models/style_edit.h mirror_partner, within kSymmetryTolerance of c's length) is made the mirror
+    // image of the edited c, in the same step. The selection becomes {c}.
+    void edit_cluster(std::size_t c, const std::function<void(HairStyle&)>& f);
+    void set_symmetry(bool on) { symmetry_ = on; }
+    bool symmetry() const { return symmetry_; }
+    // The partner a symmetric edit of `c` would change now (none without symmetry mode or without one).
+    std::optional<std::size_t> symmetric_partner(std::size_t c) const;
+    static constexpr double kSymmetryTolerance = 0.02;  // of the cluster's control polygon's length
     // The selected cluster's trajectory control point `point` dragged from image pixel `from` to `to` of `camera`: in
     // the plane facing the camera through the point (axis −1), or along the shells' axis 0, 1, 2 only. `orientation`
     // turns the style into the shells' space (style_orientation). One undo step; throws unless one cluster is selected.
@@ -67,6 +77,7 @@ private:
     Painting painting_;
     std::vector<std::size_t> selection_;
     std::vector<Snapshot> undo_, redo_;
+    bool symmetry_ = false;
 };
 
 }  // namespace coif

@@ -194,6 +194,7 @@ private:
                 case K::screenshot: screenshot(a.path); break;
                 case K::capture: capture(a.path); break;
                 case K::panel: show_panel_ = a.on; break;
+                case K::symmetry: authoring_.set_symmetry(a.on); break;
                 case K::paint: {
                     int fb_w, fb_h;
                     glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
@@ -259,15 +260,13 @@ private:
                     });
                     sync();
                     break;
-                case K::profile:
-                    authoring_.edit([&](HairStyle& st, AbsorptionMap*) {
-                        const std::vector<std::size_t> sel = selected();
-                        if (sel.size() != 1) throw Error::parameter("profile", "select one cluster to set its profile");
-                        set_profile(st, sel[0], a.profile, a.profile_values);
-                        return sel;
-                    });
+                case K::profile: {
+                    const std::vector<std::size_t> sel = selected();
+                    if (sel.size() != 1) throw Error::parameter("profile", "select one cluster to set its profile");
+                    authoring_.edit_cluster(sel[0], [&](HairStyle& st) { set_profile(st, sel[0], a.profile, a.profile_values); });
                     sync();
                     break;
+                }
                 case K::save_style: save_style(a.path); break;
             }
         } catch (const Error& e) {
@@ -578,10 +577,7 @@ private:
             if (!done) return;
             std::vector<double> values(v.begin(), v.end());
             try {
-                authoring_.edit([&](HairStyle& s2, AbsorptionMap*) {
-                    set_profile(s2, c, name, values);
-                    return std::vector<std::size_t>{c};
-                });
+                authoring_.edit_cluster(c, [&](HairStyle& s2) { set_profile(s2, c, name, values); });
                 sync();
                 message_.clear();
             } catch (const Error& e) {
@@ -622,7 +618,15 @@ private:
         ImGui::TextWrapped("selected: %s", names.empty() ? "none" : names.c_str());
         ImGui::TextWrapped("drag a handle to move a control point; X / Y lock the drag to an axis (%s)",
                            axis_lock_ < 0 ? "free" : axis_lock_ == 0 ? "x" : "y");
-        if (authoring_.selection().size() == 1) profile_widgets();
+        bool symmetry = authoring_.symmetry();
+        if (ImGui::Checkbox("symmetry (x)", &symmetry)) authoring_.set_symmetry(symmetry);
+        if (authoring_.selection().size() == 1) {
+            const std::optional<std::size_t> partner = authoring_.symmetric_partner(authoring_.selection()[0]);
+            if (authoring_.symmetry())
+                ImGui::TextWrapped("mirror partner: %s",
+                                   partner ? authoring_.style()->clusters[*partner].name.c_str() : "none (edits stay on this side)");
+            profile_widgets();
+        }
         if (ImGui::Button("duplicate")) cluster_edit("duplicate");
         ImGui::SameLine();
         if (ImGui::Button("mirror (x)")) cluster_edit("mirror");

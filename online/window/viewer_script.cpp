@@ -83,8 +83,8 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
             } catch (const Error& e) {
                 throw Error(file, at, e.what());
             }
-        } else if (key == "background" || key == "panel") {
-            act.kind = key == "background" ? K::background : K::panel;
+        } else if (key == "background" || key == "panel" || key == "symmetry") {
+            act.kind = key == "background" ? K::background : key == "panel" ? K::panel : K::symmetry;
             if (!v.is_boolean()) throw Error(file, at, "expected true or false");
             act.on = v.get<bool>();
         } else if (key == "exposure") {
@@ -228,7 +228,7 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
             throw Error(file, place, "unknown action '" + key +
                                          "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo, "
                                          "save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, delete, "
-                                         "profile, save_style)");
+                                         "profile, save_style, symmetry)");
         }
         actions.push_back(std::move(act));
     }

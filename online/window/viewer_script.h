@@ -39,6 +39,8 @@
 //   {"mirror": {"axis": "x", "at": X}}      mirror images of the selection (at: default the middle of the roots)
 //   {"delete": true}                        the selection removed
 //   {"profile": {"a"|"b"|"theta_deg": [V, …]}}   the selected cluster's profile's control points
+//   {"symmetry": true|false}                symmetry mode: a drag or profile edit of a cluster also makes its mirror
+//                                           partner across the head's plane (x = the middle of the roots) its mirror image
 //   {"save_style": "FILE.json"}             the edited style, as `coif render --style` reads it
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -53,14 +55,14 @@ struct ViewerAction {
     enum class Kind {
         orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo,
         save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, remove,
-        profile, save_style
+        profile, save_style, symmetry
     };
     Kind kind = Kind::frames;
     double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), rotate_lights (x), frames (x)
     int lights = 40;                // env: SRBF lights fitted to a map
     double radius = 12, strength = 0.5;        // paint (at: x, y)
     glm::vec3 sigma_a{4.0f, 5.0f, 6.0f};       // paint
-    bool on = false;                // background, panel
+    bool on = false;                // background, panel, symmetry
     nlohmann::json values;          // set: the parameters' keys and values
     std::filesystem::path path;     // params, env, save_absorption, screenshot, capture
     std::string where;              // "FILE: action N" for messages

@@ -109,6 +109,31 @@ TEST(StyleEdit, MirrorMakesTheReflectedEnvelopeWithItsDensityReversedAround) {
     EXPECT_NO_THROW(parse_style(style_to_json(m).dump(), "<mirrored>"));
 }
 
+TEST(StyleEdit, AMirrorPartnerIsFoundAndTakesTheEditedClustersMirrorImage) {
+    // The viewer's symmetry mode: each cluster and its mirror find each other; an edit of one, followed by mirror_onto,
+    // leaves the other the exact mirror image of the edited one (the envelope at kExact, as mirror_clusters makes it).
+    HairStyle m = style();
+    const std::size_t which[] = {0, 1, 2};
+    const std::vector<std::size_t> made = mirror_clusters(m, which, 0, 0.5);  // curl_mirror 3, twin_mirror 4, plain_mirror 5
+    for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(mirror_partner(m, k, 0, 0.5, 1e-6), made[k]) << k;
+        // A mirror is a prototype; its partner can be an instance (twin) only as the edited side, never as the partner.
+        EXPECT_EQ(mirror_partner(m, made[k], 0, 0.5, 1e-6), k == 1 ? std::optional<std::size_t>{} : std::optional(k)) << k;
+    }
+    EXPECT_EQ(mirror_partner(m, 0, 0, 0.9, 1e-3), std::nullopt);  // another plane: no partner within the tolerance
+    // Edit curl (control point 2 moved), then make its partner the mirror of the edited curl.
+    move_control_point(m, 0, 2, glm::dvec3(0.4, -0.3, 0.2));
+    mirror_onto(m, 0, made[0], 0, 0.5);
+    const auto reflect = [](glm::dvec3 x) { return glm::dvec3(1.0 - x.x, x.y, x.z); };
+    const auto reverse = [](double u) { return 2 * std::numbers::pi - u; };
+    EXPECT_LT(worst(m, 0, m, made[0], reflect, reverse), kExact);
+    EXPECT_EQ(mirror_partner(m, 0, 0, 0.5, 1e-6), made[0]);  // still each other's
+    // Refused: the cluster itself, its own prototype (twin is curl's instance), and an instance as the partner.
+    EXPECT_THROW(mirror_onto(m, 0, 0, 0, 0.5), Error);
+    EXPECT_THROW(mirror_onto(m, 1, 0, 0, 0.5), Error);
+    EXPECT_THROW(mirror_onto(m, 3, 1, 0, 0.5), Error);
+}
+
 TEST(StyleEdit, DuplicatesAreMovedCopiesAsInstancesOrPrototypes) {
     const HairStyle before = style();
     const Similarity s = turn();

@@ -58,6 +58,41 @@ TEST(Authoring, EditsAndStrokesShareOneHistoryThatRestoresExactly) {
     EXPECT_THROW(view_only.select({"left"}), Error);
 }
 
+TEST(Authoring, SymmetryModeMirrorsAnEditOntoThePartnerInTheSameUndoStep) {
+    // left and right mirror each other across x = 0 (the middle of the roots).
+    Authoring a(two(), std::nullopt);
+    const std::string start = style_text(*a.style());
+    const glm::dvec3 move(0.5, 0.25, 1.0);
+    const auto point = [&](std::size_t c, std::size_t i) { return a.style()->clusters[c].shape->trajectory().control()[i]; };
+    // Off: only the edited cluster moves.
+    EXPECT_EQ(a.symmetric_partner(0), std::nullopt);
+    a.edit_cluster(0, [&](HairStyle& s) { move_control_point(s, 0, 1, move); });
+    EXPECT_EQ(point(1, 1), glm::dvec3(3, -5, 0));
+    ASSERT_TRUE(a.undo());
+    // On: the partner becomes the mirror image of the edited cluster, exactly (the file's rounding: 1e-9 here).
+    a.set_symmetry(true);
+    ASSERT_EQ(a.symmetric_partner(0), std::optional<std::size_t>(1));
+    a.edit_cluster(0, [&](HairStyle& s) { move_control_point(s, 0, 1, move); });
+    EXPECT_EQ(a.selection(), std::vector<std::size_t>{0});
+    for (std::size_t i = 0; i < 3; ++i) {
+        const glm::dvec3 l = point(0, i), r = point(1, i);
+        EXPECT_LT(glm::distance(r, glm::dvec3(-l.x, l.y, l.z)), 1e-9) << i;
+    }
+    EXPECT_LT(glm::distance(point(1, 1), glm::dvec3(2.5, -4.75, 1.0)), 1e-9);
+    EXPECT_EQ(a.symmetric_partner(1), std::optional<std::size_t>(0));  // still each other's, the other way too
+    // One step: one undo puts both back.
+    ASSERT_TRUE(a.undo());
+    EXPECT_EQ(style_text(*a.style()), start);
+    // A cluster with no mirror image: the edit stays on its side.
+    a.set_symmetry(false);
+    a.edit_cluster(1, [&](HairStyle& s) { move_control_point(s, 1, 2, glm::dvec3(4, 0, 0)); });  // right no longer mirrors left
+    a.set_symmetry(true);
+    EXPECT_EQ(a.symmetric_partner(0), std::nullopt);
+    const glm::dvec3 right_tip = point(1, 2);
+    a.edit_cluster(0, [&](HairStyle& s) { move_control_point(s, 0, 0, move); });
+    EXPECT_EQ(point(1, 2), right_tip);
+}
+
 TEST(Authoring, ADraggedPointFollowsTheCursorInThePlaneFacingTheCameraOrAlongItsAxis) {
     Authoring a(two(), std::nullopt);
     Camera cam;  // at (0, 0, 50) looking at the origin, 720 × 480, 40°

@@ -341,6 +341,7 @@ TEST(Viewer, BadScriptsAreRefusedBeforeTheWindowOpens) {
     refused("profile", R"([{"profile": {"a": [1, -1]}}])", "action 1 (profile)/a");
     refused("style", R"([{"save_style": "style.txt"}])", ".json");
     refused("transform", R"([{"transform": {"turn": [0, 1, 0]}}])", "unknown key 'turn'");
+    refused("symmetry", R"([{"symmetry": "x"}])", "expected true or false");
     EXPECT_FALSE(fs::exists(out));
     fs::remove_all(dir);
 }
