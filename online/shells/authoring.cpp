@@ -53,13 +53,18 @@ std::optional<std::size_t> Authoring::symmetric_partner(std::size_t c) const {
     return mirror_partner(*style_, c, 0, roots_middle(*style_, 0), kSymmetryTolerance * length);
 }
 
-void Authoring::edit_cluster(std::size_t c, const std::function<void(HairStyle&)>& f) {
-    const std::optional<std::size_t> partner = symmetric_partner(c);
+void Authoring::edit_clusters(const std::vector<std::size_t>& cs, const std::function<void(HairStyle&)>& f) {
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (edited, its partner), before the edit
+    for (const std::size_t c : cs)
+        if (const std::optional<std::size_t> p = symmetric_partner(c);
+            p && std::find(cs.begin(), cs.end(), *p) == cs.end() &&
+            std::none_of(pairs.begin(), pairs.end(), [&](const auto& q) { return q.second == *p; }))
+            pairs.emplace_back(c, *p);
     const double at = style_ ? roots_middle(*style_, 0) : 0.0;
     edit([&](HairStyle& s, AbsorptionMap*) {
         f(s);
-        if (partner) mirror_onto(s, c, *partner, 0, at);
-        return std::vector<std::size_t>{c};
+        for (const auto& [c, p] : pairs) mirror_onto(s, c, p, 0, at);
+        return cs;
     });
 }
 

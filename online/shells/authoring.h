@@ -42,11 +42,13 @@ public:
     // view-only, or what `f` throws (then nothing changed).
     using Edit = std::function<std::vector<std::size_t>(HairStyle&, AbsorptionMap*)>;
     void edit(const Edit& f);
-    // An edit of cluster `c`'s shape (a control point, a profile), one undo step. In symmetry mode, the cluster that was
-    // its mirror image across the head's plane before the edit (x = the middle of the roots, the plane the viewer's
-    // mirror uses; models/style_edit.h mirror_partner, within kSymmetryTolerance of c's length) is made the mirror
-    // image of the edited c, in the same step. The selection becomes {c}.
-    void edit_cluster(std::size_t c, const std::function<void(HairStyle&)>& f);
+    // An edit of clusters `cs`' shapes or places (a control point, a profile, a transform), one undo step. In symmetry
+    // mode, each cluster that was one's mirror image across the head's plane before the edit (x = the middle of the
+    // roots, the plane the viewer's mirror uses; models/style_edit.h mirror_partner, within kSymmetryTolerance of its
+    // length), and is not itself in `cs`, is made the mirror image of the edited one, in the same step. The selection
+    // becomes `cs`.
+    void edit_clusters(const std::vector<std::size_t>& cs, const std::function<void(HairStyle&)>& f);
+    void edit_cluster(std::size_t c, const std::function<void(HairStyle&)>& f) { edit_clusters({c}, f); }
     void set_symmetry(bool on) { symmetry_ = on; }
     bool symmetry() const { return symmetry_; }
     // The partner a symmetric edit of `c` would change now (none without symmetry mode or without one).

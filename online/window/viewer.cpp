@@ -232,14 +232,14 @@ private:
                     sync();
                     break;
                 }
-                case K::transform:
-                    authoring_.edit([&](HairStyle& st, AbsorptionMap*) {
-                        const std::vector<std::size_t> sel = selected();
+                case K::transform: {
+                    const std::vector<std::size_t> sel = selected();
+                    authoring_.edit_clusters(sel, [&](HairStyle& st) {
                         transform_clusters(st, sel, similarity_about(st, sel, a.translate, a.rotate_deg, a.scale));
-                        return sel;
                     });
                     sync();
                     break;
+                }
                 case K::duplicate:
                     authoring_.edit([&](HairStyle& st, AbsorptionMap* map) {
                         const std::vector<std::size_t> sel = selected();

@@ -39,8 +39,9 @@
 //   {"mirror": {"axis": "x", "at": X}}      mirror images of the selection (at: default the middle of the roots)
 //   {"delete": true}                        the selection removed
 //   {"profile": {"a"|"b"|"theta_deg": [V, …]}}   the selected cluster's profile's control points
-//   {"symmetry": true|false}                symmetry mode: a drag or profile edit of a cluster also makes its mirror
-//                                           partner across the head's plane (x = the middle of the roots) its mirror image
+//   {"symmetry": true|false}                symmetry mode: a drag, profile edit or transform also makes each mirror
+//                                           partner across the head's plane (x = the middle of the roots) not selected
+//                                           the mirror image of its edited cluster
 //   {"save_style": "FILE.json"}             the edited style, as `coif render --style` reads it
 #include <filesystem>
 #include <glm/glm.hpp>

@@ -83,6 +83,24 @@ TEST(Authoring, SymmetryModeMirrorsAnEditOntoThePartnerInTheSameUndoStep) {
     // One step: one undo puts both back.
     ASSERT_TRUE(a.undo());
     EXPECT_EQ(style_text(*a.style()), start);
+    // A transform of the selection moves each partner that is not selected as the mirror image.
+    a.edit_clusters({0}, [&](HairStyle& s) {
+        transform_clusters(s, std::vector<std::size_t>{0}, similarity_about(s, std::vector<std::size_t>{0}, {-1, 0.5, 0}, {0, 0, 20}, 1.2));
+    });
+    for (std::size_t i = 0; i < 3; ++i) {
+        const glm::dvec3 l = point(0, i), r = point(1, i);
+        EXPECT_LT(glm::distance(r, glm::dvec3(-l.x, l.y, l.z)), 1e-9) << i;
+    }
+    EXPECT_NE(point(0, 2), glm::dvec3(-3, -10, 0));  // it moved
+    ASSERT_TRUE(a.undo());
+    EXPECT_EQ(style_text(*a.style()), start);
+    // Both selected: each moves by the edit itself, neither is overwritten as the other's mirror.
+    a.edit_clusters({0, 1}, [&](HairStyle& s) {
+        transform_clusters(s, std::vector<std::size_t>{0, 1}, similarity_about(s, std::vector<std::size_t>{0, 1}, {0, 2, 0}, {0, 0, 0}, 1.0));
+    });
+    EXPECT_LT(glm::distance(point(0, 0), glm::dvec3(-3, 2, 0)), 1e-9);
+    EXPECT_LT(glm::distance(point(1, 0), glm::dvec3(3, 2, 0)), 1e-9);
+    ASSERT_TRUE(a.undo());
     // A cluster with no mirror image: the edit stays on its side.
     a.set_symmetry(false);
     a.edit_cluster(1, [&](HairStyle& s) { move_control_point(s, 1, 2, glm::dvec3(4, 0, 0)); });  // right no longer mirrors left
