@@ -208,22 +208,7 @@ void FragmentLists::resolve(const glm::vec3& background, bool over, glm::ivec2 o
     glBindTextureUnit(0, resolved_.id());
     glUniform1i(copy_.uniform("u_image"), 0);
     glUniform2i(copy_.uniform("u_origin"), origin.x, origin.y);
-    if (over) {  // premultiplied "over" the frame; an sRGB target encodes the blended linear result
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        glEnable(GL_FRAMEBUFFER_SRGB);
-    } else {
-        glDisable(GL_BLEND);
-    }
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glBindVertexArray(empty_vao_.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    if (over) {
-        glDisable(GL_BLEND);
-        glDisable(GL_FRAMEBUFFER_SRGB);
-    }
+    draw_fullscreen_into_frame(empty_vao_, over);
     resolved_this_frame_ = true;
     check_errors("FragmentLists::resolve");
 }

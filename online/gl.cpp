@@ -116,6 +116,23 @@ VertexArray make_vertex_array() {
     return VertexArray(id);
 }
 
+void draw_fullscreen_into_frame(const VertexArray& empty_vao, bool over) {
+    if (over) {  // premultiplied "over" the frame; an sRGB target encodes the blended linear result
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+    } else {
+        glDisable(GL_BLEND);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(empty_vao.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+}
+
 void float_attribute(GLuint vao, GLuint location, GLint components, std::size_t offset, GLuint binding) {
     glEnableVertexArrayAttrib(vao, location);
     glVertexArrayAttribFormat(vao, location, components, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));

@@ -50,6 +50,12 @@ using Query = Handle<delete_query>;
 
 Buffer make_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
 VertexArray make_vertex_array();
+// Draws one full-screen triangle (fullscreen.vert; `empty_vao`: a vertex array with no attributes) with the program in
+// use into the bound framebuffer's viewport: replacing its pixels, or with `over` blended premultiplied "over" them
+// (ONE, ONE_MINUS_SRC_ALPHA, with GL_FRAMEBUFFER_SRGB on, so an sRGB target blends linearly). Depth test, face culling,
+// blending and GL_FRAMEBUFFER_SRGB are off afterwards. The compositing resolves' last step (online/fragment_lists.h,
+// online/weighted_blend.h).
+void draw_fullscreen_into_frame(const VertexArray& empty_vao, bool over);
 // Enables float attribute `location` of `vao`: `components` floats at `offset` in the vertex buffer
 // bound to `binding`.
 void float_attribute(GLuint vao, GLuint location, GLint components, std::size_t offset, GLuint binding);

@@ -49,22 +49,7 @@ void WeightedBlend::resolve(const glm::vec3& background, bool over, glm::ivec2 o
     glUniform2i(resolve_.uniform("u_origin"), origin.x, origin.y);
     glUniform3fv(resolve_.uniform("u_background"), 1, &background.x);
     glUniform1i(resolve_.uniform("u_over"), over ? 1 : 0);
-    if (over) {  // premultiplied "over" the frame; an sRGB target encodes the blended linear result
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        glEnable(GL_FRAMEBUFFER_SRGB);
-    } else {
-        glDisable(GL_BLEND);
-    }
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glBindVertexArray(empty_vao_.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    if (over) {
-        glDisable(GL_BLEND);
-        glDisable(GL_FRAMEBUFFER_SRGB);
-    }
+    draw_fullscreen_into_frame(empty_vao_, over);
     check_errors("WeightedBlend::resolve");
 }
 
