@@ -58,6 +58,14 @@ void Strands::add_strand(const std::vector<glm::vec3>& strand_points) {
     offsets.push_back(static_cast<std::uint32_t>(points.size()));
 }
 
+void Strands::add_strands(const Strands& other) {
+    if (other.strand_count() == 0) return;
+    if (offsets.empty()) offsets.push_back(0);
+    const auto base = static_cast<std::uint32_t>(points.size());
+    points.insert(points.end(), other.points.begin(), other.points.end());
+    for (std::size_t i = 1; i < other.offsets.size(); ++i) offsets.push_back(base + other.offsets[i]);
+}
+
 void Strands::validate(const fs::path& source) const {
     if (offsets.empty()) {
         if (!points.empty()) throw Error(source, "strands", "points without strand offsets");

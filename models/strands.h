@@ -84,6 +84,8 @@ struct Strands {
     std::size_t point_count(std::size_t strand) const { return offsets[strand + 1] - offsets[strand]; }
 
     void add_strand(const std::vector<glm::vec3>& strand_points);
+    // Appends the strands of `other` (their points only, as add_strand: no per-point attributes).
+    void add_strands(const Strands& other);
     // Throws coif::Error (with `source` as the file) if the arrays are inconsistent or hold NaN/Inf,
     // a strand has < 2 points, or a strand has zero length.
     void validate(const std::filesystem::path& source) const;

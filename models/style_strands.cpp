@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <random>
 
 #include "models/core/error.h"
@@ -94,56 +93,90 @@ void emit(Strands& out, const Cluster& c, const DiskLayout& l, int first, const 
 
 }  // namespace
 
+struct ClusterStrandSampler::Planes {
+    std::vector<PlaneDensity> planes;
+    std::size_t count = 0;  // strands of a cluster of this prototype: the most crossing any plane
+};
+
+ClusterStrandSampler::ClusterStrandSampler(const HairStyle& style, const StrandSampling& options)
+    : style_(style), options_(options), planes_(style.clusters.size()) {}
+
+ClusterStrandSampler::~ClusterStrandSampler() = default;
+
+const ClusterStrandSampler::Planes& ClusterStrandSampler::planes(std::size_t prototype) {
+    std::unique_ptr<Planes>& p = planes_.at(prototype);
+    if (!p) {
+        p = std::make_unique<Planes>();
+        p->planes = plane_densities(style_, style_.clusters[prototype]);
+        double n = 0;
+        for (const PlaneDensity& d : p->planes) n = std::max(n, d.count);
+        p->count = static_cast<std::size_t>(std::round(n));
+    }
+    return *p;
+}
+
+std::size_t ClusterStrandSampler::count(std::size_t cluster) {
+    const Cluster& c = style_.clusters.at(cluster);
+    if (options_.from == StrandSampling::From::Density) return planes(c.prototype).count;
+    if (c.density->kind != DensitySource::Kind::Strands) return 0;
+    std::size_t n = 0;
+    for (const StrandRun& r : c.density->strands) n += r.vu.size() >= 2;
+    return n;
+}
+
+Strands ClusterStrandSampler::sample(std::size_t ci) {
+    Strands out;
+    out.offsets.push_back(0);
+    const Cluster& c = style_.clusters.at(ci);
+    const DiskLayout& l = style_.layout;
+    const int sub = std::max(1, options_.points_per_hsv);
+    if (options_.from == StrandSampling::From::Members) {
+        if (c.density->kind == DensitySource::Kind::Strands)
+            for (const StrandRun& r : c.density->strands) emit(out, c, l, r.first_plane, r.vu, sub);
+        return out;
+    }
+    const Planes& p = planes(c.prototype);
+    if (static_cast<double>(p.count) > options_.max_strands) refuse_strand_count(static_cast<double>(p.count), options_.max_strands);
+    const std::vector<PlaneDensity>& planes = p.planes;
+    Rng rng = seeded_rng(options_.seed, ci);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (std::size_t j = 0; j < p.count; ++j) {
+        const double xi_v = U(rng), xi_u = U(rng);
+        int first = -1;
+        std::vector<glm::dvec2> vu;
+        for (int i = 0; i <= l.s_t; ++i) {
+            const bool present = static_cast<double>(j) + 0.5 < planes[static_cast<std::size_t>(i)].count;
+            if (present) {
+                if (first < 0) first = i;
+                vu.push_back(sample_plane(planes[static_cast<std::size_t>(i)], l, xi_v, xi_u));
+            } else if (first >= 0) {
+                break;
+            }
+        }
+        emit(out, c, l, first, vu, sub);
+    }
+    return out;
+}
+
+void refuse_strand_count(double total, double max) {
+    throw Error({}, "export", "the style's densities call for " + std::to_string(static_cast<long long>(total)) +
+                                  " strands, more than the limit of " + std::to_string(static_cast<long long>(max)));
+}
+
 Strands sample_strands(const HairStyle& style, const StrandSampling& o, std::vector<std::uint32_t>* strand_cluster) {
     Strands out;
     out.offsets.push_back(0);
     if (strand_cluster) strand_cluster->clear();
-    const DiskLayout& l = style.layout;
-    const int sub = std::max(1, o.points_per_hsv);
-    std::map<std::size_t, std::vector<PlaneDensity>> cache;
-    double total = 0;
+    ClusterStrandSampler sampler(style, o);
     if (o.from == StrandSampling::From::Density) {
-        for (const Cluster& c : style.clusters) {
-            auto it = cache.find(c.prototype);
-            if (it == cache.end()) it = cache.emplace(c.prototype, plane_densities(style, style.clusters[c.prototype])).first;
-            double n = 0;
-            for (const auto& p : it->second) n = std::max(n, p.count);
-            total += std::round(n);
-        }
-        if (total > o.max_strands)
-            throw Error({}, "export", "the style's densities call for " + std::to_string(static_cast<long long>(total)) +
-                                          " strands, more than the limit of " + std::to_string(static_cast<long long>(o.max_strands)));
+        double total = 0;
+        for (std::size_t ci = 0; ci < style.clusters.size(); ++ci) total += static_cast<double>(sampler.count(ci));
+        if (total > o.max_strands) refuse_strand_count(total, o.max_strands);
     }
     for (std::size_t ci = 0; ci < style.clusters.size(); ++ci) {
-        const Cluster& c = style.clusters[ci];
-        if (o.from == StrandSampling::From::Members) {
-            if (c.density->kind != DensitySource::Kind::Strands) continue;
-            for (const StrandRun& r : c.density->strands) emit(out, c, l, r.first_plane, r.vu, sub);
-            if (strand_cluster) strand_cluster->resize(out.strand_count(), static_cast<std::uint32_t>(ci));
-            continue;
-        }
-        const std::vector<PlaneDensity>& planes = cache.at(c.prototype);
-        double nmax = 0;
-        for (const auto& p : planes) nmax = std::max(nmax, p.count);
-        const int n = static_cast<int>(std::round(nmax));
-        Rng rng = seeded_rng(o.seed, ci);
-        std::uniform_real_distribution<double> U(0, 1);
-        for (int j = 0; j < n; ++j) {
-            const double xi_v = U(rng), xi_u = U(rng);
-            int first = -1;
-            std::vector<glm::dvec2> vu;
-            for (int i = 0; i <= l.s_t; ++i) {
-                const bool present = j + 0.5 < planes[static_cast<std::size_t>(i)].count;
-                if (present) {
-                    if (first < 0) first = i;
-                    vu.push_back(sample_plane(planes[static_cast<std::size_t>(i)], l, xi_v, xi_u));
-                } else if (first >= 0) {
-                    break;
-                }
-            }
-            emit(out, c, l, first, vu, sub);
-            if (strand_cluster) strand_cluster->resize(out.strand_count(), static_cast<std::uint32_t>(ci));
-        }
+        const Strands one = sampler.sample(ci);
+        out.add_strands(one);
+        if (strand_cluster) strand_cluster->resize(out.strand_count(), static_cast<std::uint32_t>(ci));
     }
     if (out.strand_count() == 0) out.offsets.clear();
     // A style in coif's y-up frame already (kStyleAxesYUp) is not turned again by whoever orients its strands.

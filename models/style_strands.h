@@ -17,6 +17,7 @@
 // From members: a "strands" density source's stored runs, each a strand through its (v, u) on its
 // planes — the fitted strands as the style remembers them. Other density kinds give no strands.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "models/hair_style.h"
@@ -36,5 +37,27 @@ struct StrandSampling {
 // given, receives each strand's cluster (an index into style.clusters).
 Strands sample_strands(const HairStyle& style, const StrandSampling& options,
                        std::vector<std::uint32_t>* strand_cluster = nullptr);
+
+// sample_strands one cluster at a time, for a caller that keeps each cluster's strands between cooks of a style being
+// edited (online/scene/cook.h): sample(c) is exactly the run of strands sample_strands gives cluster c (each cluster's
+// random numbers are seeded by its index), and sample_strands is these runs in cluster order. The style must outlive it.
+class ClusterStrandSampler {
+public:
+    ClusterStrandSampler(const HairStyle& style, const StrandSampling& options);
+    ~ClusterStrandSampler();
+    // How many strands sample(cluster) gives: from its prototype's densities (computed once per prototype and kept), or
+    // its stored runs. Callers check the sum against options.max_strands before sampling (sample_strands does).
+    std::size_t count(std::size_t cluster);
+    Strands sample(std::size_t cluster);
+
+private:
+    struct Planes;
+    const Planes& planes(std::size_t prototype);
+    const HairStyle& style_;
+    StrandSampling options_;
+    std::vector<std::unique_ptr<Planes>> planes_;  // by prototype index, made on first use
+};
+// The error sample_strands throws when a style calls for `total` strands, more than `max`.
+[[noreturn]] void refuse_strand_count(double total, double max);
 
 }  // namespace coif

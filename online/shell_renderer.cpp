@@ -137,15 +137,30 @@ void validate(const ShellSettings& s) {
 
 ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>()) {
     const auto start = Clock::now();
+    set_hair(std::move(cooked));
+    stats_.prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void ShellRenderer::set_hair(CookedShells cooked) {
     Impl& m = *impl_;
     if (cooked.shells.clusters() == 0) throw Error(cooked.source, "clusters", "the hair has no clusters");
     const RecordAtlas& atlas = cooked.atlas;
-    const DensityGrid& grid = cooked.grid;
     const auto upload = Clock::now();
-    m.gpu = std::make_unique<ShellGpu>(cooked.shells, atlas, grid, cooked.source);
+    // Made before anything changes: a hair the GPU cannot hold leaves the last one drawn.
+    auto gpu = std::make_unique<ShellGpu>(cooked.shells, atlas, cooked.grid, cooked.source);
     glFinish();  // the upload's copies done, so that upload_seconds holds them
     stats_.upload_seconds = std::chrono::duration<double>(Clock::now() - upload).count();
+    m.gpu = std::move(gpu);
     m.shells = std::move(cooked.shells);
+    // What was of the last hair: its motion, its instances' lights, its lighting steps.
+    m.instances.clear();
+    m.lighting_steps.clear();
+    m.cooked_instances.clear();
+    m.cooked_samples.clear();
+    m.shadow_source = Strands{};
+    m.moved_strands = Strands{};
+    m.shadow_strand_cluster.clear();
+    m.invalidate_shadows();
 
     const PreparedShells& p = m.shells;
     stats_.clusters = p.clusters();
@@ -172,7 +187,9 @@ ShellRenderer::ShellRenderer(CookedShells cooked) : impl_(std::make_unique<Impl>
     stats_.auto_fiber_radius = cooked.auto_fiber_radius;
     bounds_min_ = p.bounds_min;
     bounds_max_ = p.bounds_max;
-    stats_.prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    // The lights and the body stay.
+    if (!m.lights.empty()) m.gpu->set_lights(m.lights);
+    if (m.body_mesh) upload_grid();
 }
 
 ShellRenderer::~ShellRenderer() = default;

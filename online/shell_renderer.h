@@ -98,6 +98,11 @@ public:
     // online/scene/cook.h, or read from a `.coif` asset); throws coif::Error if it has no clusters or exceeds the
     // GPU's limits.
     explicit ShellRenderer(CookedShells cooked);
+    // Draws another cooked hair from now on (coif view's edited style), keeping the compiled programs, the lights and
+    // the body (set_lights, set_body); what was of the last hair goes: its motion (set_cluster_transforms), its painted
+    // absorption (give it again: set_absorption) and its shadow grid (the new hair's). Throws as the constructor, with the
+    // last hair kept.
+    void set_hair(CookedShells cooked);
     ~ShellRenderer();
     ShellRenderer(const ShellRenderer&) = delete;
     ShellRenderer& operator=(const ShellRenderer&) = delete;

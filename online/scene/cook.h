@@ -6,6 +6,7 @@
 // which the runtime (coif::runtime) loads without the database.
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -37,51 +38,66 @@ RecordAtlas pack_record_atlas(const HrirDatabase& db, std::span<const std::uint3
 // Every record of the database, in order.
 RecordAtlas pack_record_atlas(const HrirDatabase& db);
 
-// What stage 1 made of each prototype (its layer meshes, its sectors' look-ups and shadow sums), kept between cooks
-// of a style being edited (coif view's cluster authoring): a prototype whose shape, density and layout are unchanged,
-// bit for bit, is taken from here instead of being made again, and the result is the same. Its entries are keyed by
-// those contents; it holds the prototypes of the last cook only. For one database: a cache must not outlive its
-// SatfIndex or serve another.
-class PrototypeCache {
+// What a cook made, kept for the next cook of the same style being edited (coif view's cluster authoring), so that an
+// edit of a few clusters makes only what they change and the result is the same, bit for bit, as a cook from nothing:
+//   - each prototype's layer meshes, sector look-ups and shadow sums, keyed by its layout, shape and density bit for bit;
+//   - each cluster's grid strands (models/style_strands.h ClusterStrandSampler) and fibre-tilt sums
+//     (prepared_shells.h FibreTiltSums), keyed by its prototype's key, its placement, its index (its strands' seed),
+//     the orientation and the lighting rows;
+//   - the shadow grid's fixed-point sums (shadow_grid.h GridSums): a changed cluster's old strands are taken out and its
+//     new ones put in, unless the strands' bounds changed the voxel size (GridSums::can_reframe), when all are voxelized again;
+//   - each used record's atlas tiles (record_atlas.h record_tiles), by record id;
+//   - the database's atlas ranges (database_atlas_stats).
+// It holds what the last cook that finished used, and nothing of a cook that threw. For one database: a cache must not
+// outlive its SatfIndex or serve another.
+class CookCache {
 public:
-    struct Entry {
-        std::vector<ShellVertex> vertices;
-        std::vector<std::uint32_t> indices;
-        std::vector<MeshRange> meshes;  // first and base_vertex relative to the entry's arrays
-        std::vector<ShellSector> sectors;
+    CookCache();
+    ~CookCache();
+    CookCache(const CookCache&) = delete;
+    CookCache& operator=(const CookCache&) = delete;
+
+    // Of the last cook that finished: what it made anew and the wall-clock time of each part.
+    struct Timings {
+        double total_ms = 0;
+        double prototypes_ms = 0;  // meshes, sector densities, look-ups (prepare_prototypes) and placement
+        double atlas_ms = 0;       // the used records' atlas
+        double strands_ms = 0;     // sampling the grid's strands
+        double tilts_ms = 0;       // the fibre-tilt sums
+        double grid_ms = 0;        // the shadow grid
+        double rest_ms = 0;        // joining the strands, framing, the moving data
+        std::size_t prototypes = 0, prototypes_made = 0;
+        std::size_t clusters = 0, clusters_sampled = 0;
+        std::size_t records = 0, records_packed = 0;
+        bool grid_rebuilt = false;  // voxelized from all strands (the first cook, or the strands' bounds changed)
     };
-    std::size_t hits() const { return hits_; }      // of the last cook
-    std::size_t misses() const { return misses_; }
-    // The database's atlas ranges (database_atlas_stats), computed on the first cook and kept: they depend on the
-    // database alone.
+    const Timings& timings() const;
+    // The database's atlas ranges, computed on first use and kept: they depend on the database alone.
     const DatabaseAtlasStats& atlas_stats(const HrirDatabase& db);
-    // Internal to prepare_prototypes.
-    const Entry* find(const std::string& key);
-    void keep(std::string key, Entry entry);
-    void start();  // a cook begins: the last one's entries become the ones it may take from
+
+    struct State;  // online/scene/cook.cpp
+    State& state() { return *state_; }
 
 private:
-    std::map<std::string, Entry> last_, now_;
-    std::size_t hits_ = 0, misses_ = 0;
-    const HrirDatabase* stats_of_ = nullptr;
-    DatabaseAtlasStats stats_;
+    std::unique_ptr<State> state_;
 };
 
 // Stage 1 of the preparation (online/shells/prepared_shells.h): meshes, sector look-ups and shadow sums of every
 // prototype. `mean_alpha`: per database record. Sector ids are database record ids. Throws coif::Error if the
-// style has no clusters. `cache`: see PrototypeCache (null: every prototype made).
+// style has no clusters.
 void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const SatfIndex& satf,
-                        std::span<const float> mean_alpha, PrototypeCache* cache = nullptr);
+                        std::span<const float> mean_alpha);
 // Stages 1 and 2.
 PreparedShells prepare_shells(const HairStyle& style, const SatfIndex& satf, std::span<const float> mean_alpha,
-                              const glm::mat3& orientation, int lighting_rows_per_hsv = 0, PrototypeCache* cache = nullptr);
+                              const glm::mat3& orientation, int lighting_rows_per_hsv = 0);
 
 // Everything the shell renderer draws a style with: both stages, the records the sectors use (and only those)
 // packed with the database's ranges, with the sectors' ids renumbered to them, the shadow grid of the style's
 // strands (models/style_strands.h, StrandSampling{}), the fibres' tilts and the auto fibre radius.
 // `lighting_rows_per_hsv` as place_clusters. `sampled_strands`, if given, receives the sampled strands (the style's
-// axes, not turned), so that a caller need not sample again. Throws coif::Error as the stages do.
+// axes, not turned), so that a caller need not sample again. `cache`: see CookCache (null: everything made). Throws
+// coif::Error as the stages do.
 CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const glm::mat3& orientation,
-                         int lighting_rows_per_hsv = 0, Strands* sampled_strands = nullptr, PrototypeCache* cache = nullptr);
+                         int lighting_rows_per_hsv = 0, Strands* sampled_strands = nullptr, CookCache* cache = nullptr);
 
 }  // namespace coif

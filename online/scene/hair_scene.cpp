@@ -19,8 +19,9 @@ Camera SceneFraming::camera_for(Strands sampled) const {
     return view.around(lo, hi);
 }
 
-void refuse_eye_inside(const Camera& camera, const ShellRenderer& r) {
-    const glm::vec3 lo = r.bounds_min(), hi = r.bounds_max();
+void refuse_eye_inside(const Camera& camera, const ShellRenderer& r) { refuse_eye_inside(camera, r.bounds_min(), r.bounds_max()); }
+
+void refuse_eye_inside(const Camera& camera, glm::vec3 lo, glm::vec3 hi) {
     if (glm::all(glm::greaterThan(camera.eye, lo)) && glm::all(glm::lessThan(camera.eye, hi)))
         throw Error::parameter("camera", "the eye lies inside the hair's bounding box");
 }
@@ -50,7 +51,7 @@ ShellView make_view(CookedShells cooked, const Strands* sampled, const std::vect
 }
 
 ShellView cook_view(const HairStyle& style, const SatfIndex& satf, const std::vector<SrbfLight>& lights,
-                    const AbsorptionMap* absorption, const SceneFraming& framing, int lighting_rows, PrototypeCache* cache = nullptr) {
+                    const AbsorptionMap* absorption, const SceneFraming& framing, int lighting_rows, CookCache* cache = nullptr) {
     Strands sampled;
     CookedShells cooked = cook_shells(style, satf, style_orientation(style), lighting_rows, &sampled, cache);
     return make_view(std::move(cooked), &sampled, lights, absorption, framing);
@@ -72,7 +73,7 @@ HairScene::HairScene(HairSceneDesc desc)
         satf.emplace(SatfIndex::open(*db, SatfOptions{}));
         database_label = db->path().string();
         if (desc.headless) context = Context::headless();
-        v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows, desc.prototype_cache);
+        v = cook_view(style, *satf, lights, desc.absorption, desc.framing, desc.lighting_rows, desc.cook_cache);
     }
     renderer = std::move(v.renderer);
     if (desc.body) {
@@ -90,9 +91,14 @@ HairScene::HairScene(HairSceneDesc desc)
     frame_max = v.frame_max;
 }
 
-ShellView HairScene::view_of(const HairStyle& other, const SceneFraming& framing, int lighting_rows, PrototypeCache* cache) const {
+ShellView HairScene::view_of(const HairStyle& other, const SceneFraming& framing, int lighting_rows, CookCache* cache) const {
     if (!satf) throw Error::parameter("style", "a scene drawn from an asset has no database to cook another style with");
     return cook_view(other, *satf, lights, nullptr, framing, lighting_rows, cache);
+}
+
+CookedShells HairScene::cook(const HairStyle& other, int lighting_rows, CookCache* cache) const {
+    if (!satf) throw Error::parameter("style", "a scene drawn from an asset has no database to cook another style with");
+    return cook_shells(other, *satf, style_orientation(other), lighting_rows, nullptr, cache);
 }
 
 }  // namespace coif::gl

@@ -54,7 +54,7 @@ struct HairSceneDesc {
     std::ostream* log = nullptr;       // the default database's messages (which file, building it); null: none
     int lighting_rows = 0;             // ShellRenderer's lighting_rows_per_hsv (0: one per mesh row)
     const AbsorptionMap* absorption = nullptr;  // painted σa, or null; must outlive the scene
-    PrototypeCache* prototype_cache = nullptr;  // online/scene/cook.h: kept for later cooks of edits (view_of); or null
+    CookCache* cook_cache = nullptr;  // online/scene/cook.h: kept for later cooks of edits (view_of); or null
     // A character's body under the hair (ShellRenderer::set_body), in the strand file's frame: turned as the style's
     // strands were on import (style_source_rotation) and are when drawn (style_orientation), which an asset holds
     // (CookedShells::body_orientation). Unless framing.box is set, the camera frames the hair and the body together.
@@ -68,6 +68,8 @@ struct HairSceneDesc {
 // Throws coif::Error::parameter if the camera's eye lies inside the renderer's shells' box (nothing sensible
 // can be drawn from there).
 void refuse_eye_inside(const Camera& camera, const ShellRenderer& renderer);
+// The same for the box [lo, hi] (e.g. a cooked hair's PreparedShells bounds).
+void refuse_eye_inside(const Camera& camera, glm::vec3 lo, glm::vec3 hi);
 
 // An offscreen target of the camera's size in the renderers' linear format (RGBA16F), with `samples` samples
 // (MSAA when more than 1): what ShellRenderer::draw draws into for benchmarks.
@@ -90,7 +92,10 @@ struct HairScene {
     // Another style's shells in a renderer sharing this scene's database, SATF index and lights, framed by
     // `framing` (without absorption); throws as the constructor, and coif::Error if the scene is an asset's (it has
     // no database). The renderer must not outlive the scene.
-    ShellView view_of(const HairStyle& style, const SceneFraming& framing, int lighting_rows, PrototypeCache* cache = nullptr) const;
+    ShellView view_of(const HairStyle& style, const SceneFraming& framing, int lighting_rows, CookCache* cache = nullptr) const;
+    // Another style cooked with this scene's database, as the constructor cooks (for ShellRenderer::set_hair: coif view's
+    // edits, with a cache that keeps what they did not change); throws as view_of.
+    CookedShells cook(const HairStyle& style, int lighting_rows, CookCache* cache = nullptr) const;
 
     std::string lights_label;
     std::vector<SrbfLight> lights;

@@ -126,84 +126,121 @@ void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& 
     }
 }
 
+namespace {
+// A lighting sample's frame: the unit tangent and two unit normals (r0, T × r0); tilts are summed in it.
+struct TiltFrame {
+    glm::vec3 T, r, s;
+};
+TiltFrame tilt_frame(const LightingSample& q) {
+    const glm::vec3 T = glm::normalize(glm::vec3(q.tangent));
+    const glm::vec3 n = glm::vec3(q.normal);
+    const glm::vec3 r = glm::normalize(n - glm::dot(n, T) * T);
+    return {T, r, glm::cross(T, r)};
+}
+std::size_t placed_rows(const PreparedShells& shells) {
+    const auto rows = static_cast<std::size_t>(shells.lighting_rows);
+    if (rows == 0 || shells.samples.size() != rows * shells.clusters())
+        throw Error::parameter("fibre tilts", "the shells' lighting samples are not placed");
+    return rows;
+}
+// Adds the segments of strand `s` (of cluster `c`, whose samples' frames are `frames`) to `sums`.
+void add_strand_tilts(FibreTiltSums& sums, const PreparedShells& shells, std::size_t c, std::span<const TiltFrame> frames,
+                      const Strands& strands, std::size_t s, const glm::mat3& orientation) {
+    const std::size_t rows = sums.rows.size();
+    for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
+        const glm::vec3 d = orientation * (strands.points[k + 1] - strands.points[k]);
+        const float len = glm::length(d);
+        if (!(len > 0) || !std::isfinite(len)) continue;
+        const glm::vec3 mid = orientation * (0.5f * (strands.points[k] + strands.points[k + 1]));
+        // The nearest sample along the own axis (a curve of few rows, so a scan is cheap).
+        std::size_t best = 0;
+        float best_d2 = std::numeric_limits<float>::infinity();
+        for (std::size_t i = 0; i < rows; ++i) {
+            const glm::vec3 e = glm::vec3(shells.samples[c * rows + i].position) - mid;
+            const float d2 = glm::dot(e, e);
+            if (d2 < best_d2) best_d2 = d2, best = i;
+        }
+        const TiltFrame& f = frames[best];
+        const glm::vec3 t = d / len;
+        const double angle = std::acos(std::clamp(double(glm::dot(t, f.T)), -1.0, 1.0));
+        const glm::dvec2 across(glm::dot(t, f.r), glm::dot(t, f.s));
+        const double across_len = glm::length(across);
+        const glm::dvec2 v = across_len > 1e-12 ? angle * across / across_len : glm::dvec2(0.0);
+        FibreTiltSums::Moments& m = sums.rows[best];
+        m.w += len;
+        m.sum += double(len) * v;
+        m.sum2 += double(len) * glm::dvec3(v.x * v.x, v.y * v.y, v.x * v.y);
+        sums.angle2 += len * angle * angle;
+        sums.weight += len;
+    }
+}
+std::vector<TiltFrame> cluster_frames(const PreparedShells& shells, std::size_t c, std::size_t rows) {
+    std::vector<TiltFrame> frames(rows);
+    for (std::size_t i = 0; i < rows; ++i) frames[i] = tilt_frame(shells.samples[c * rows + i]);
+    return frames;
+}
+}  // namespace
+
+FibreTiltSums cluster_fibre_tilt_sums(const PreparedShells& shells, std::size_t cluster, const Strands& strands,
+                                      const glm::mat3& orientation) {
+    const std::size_t rows = placed_rows(shells);
+    if (cluster >= shells.clusters()) throw Error::parameter("fibre tilts", "a strand's cluster is out of range");
+    FibreTiltSums sums;
+    sums.rows.resize(rows);
+    const std::vector<TiltFrame> frames = cluster_frames(shells, cluster, rows);
+    for (std::size_t s = 0; s < strands.strand_count(); ++s) add_strand_tilts(sums, shells, cluster, frames, strands, s, orientation);
+    return sums;
+}
+
+float set_fibre_tilts(PreparedShells& shells, std::span<const FibreTiltSums> clusters) {
+    const std::size_t rows = placed_rows(shells);
+    if (clusters.size() != shells.clusters()) throw Error::parameter("fibre tilts", "one set of sums per cluster is needed");
+    double angle2 = 0, weight = 0;
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+        if (clusters[c].rows.size() != rows) throw Error::parameter("fibre tilts", "the sums are of another lighting layout");
+        angle2 += clusters[c].angle2;
+        weight += clusters[c].weight;
+        for (std::size_t r = 0; r < rows; ++r) {
+            const FibreTiltSums::Moments& m = clusters[c].rows[r];
+            LightingSample& q = shells.samples[c * rows + r];
+            q.tilt_mean = q.tilt_a = q.tilt_b = glm::vec4(0.0f);
+            if (!(m.w > 0)) continue;
+            // The mean tilt and the covariance about it, and its eigen-decomposition (2 × 2, symmetric).
+            const glm::dvec2 mean = m.sum / m.w;
+            const double xx = m.sum2.x / m.w - mean.x * mean.x, yy = m.sum2.y / m.w - mean.y * mean.y,
+                         xy = m.sum2.z / m.w - mean.x * mean.y;
+            const double half_trace = 0.5 * (xx + yy), det = xx * yy - xy * xy;
+            const double disc = std::sqrt(std::max(0.0, half_trace * half_trace - det));
+            const double l1 = std::max(0.0, half_trace + disc), l2 = std::max(0.0, half_trace - disc);
+            const glm::dvec2 e1 = std::abs(xy) > 1e-12 ? glm::normalize(glm::dvec2(l1 - yy, xy))
+                                                       : (xx >= yy ? glm::dvec2(1.0, 0.0) : glm::dvec2(0.0, 1.0));
+            const glm::dvec2 e2(-e1.y, e1.x);
+            const TiltFrame f = tilt_frame(q);
+            const auto world = [&f](glm::dvec2 v) { return glm::vec4(float(v.x) * f.r + float(v.y) * f.s, 0.0f); };
+            // ±a, ±b with a = √(2 λ1) e1, b = √(2 λ2) e2: their second moment about the mean is λ1 e1e1ᵀ + λ2 e2e2ᵀ.
+            q.tilt_mean = world(mean);
+            q.tilt_a = world(std::sqrt(2.0 * l1) * e1);
+            q.tilt_b = world(std::sqrt(2.0 * l2) * e2);
+        }
+    }
+    return weight > 0 ? static_cast<float>(std::sqrt(angle2 / weight)) : 0.0f;
+}
+
 float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::span<const std::uint32_t> strand_cluster,
                           const glm::mat3& orientation) {
     if (strand_cluster.size() != strands.strand_count())
         throw Error::parameter("fibre tilts", "one cluster per strand is needed");
-    const auto rows = static_cast<std::size_t>(shells.lighting_rows);
-    if (rows == 0 || shells.samples.size() != rows * shells.clusters())
-        throw Error::parameter("fibre tilts", "the shells' lighting samples are not placed");
-    // Each sample's frame: the unit tangent and two unit normals (r0, T × r0); tilts are summed in it.
-    struct Frame {
-        glm::vec3 T, r, s;
-    };
-    std::vector<Frame> frames(shells.samples.size());
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-        const glm::vec3 T = glm::normalize(glm::vec3(shells.samples[i].tangent));
-        const glm::vec3 n = glm::vec3(shells.samples[i].normal);
-        const glm::vec3 r = glm::normalize(n - glm::dot(n, T) * T);
-        frames[i] = {T, r, glm::cross(T, r)};
-    }
-    struct Moments {
-        double w = 0;
-        glm::dvec2 sum{0.0};
-        glm::dvec3 sum2{0.0};  // xx, yy, xy
-    };
-    std::vector<Moments> mom(shells.samples.size());
-    double angle2 = 0, weight = 0;
+    const std::size_t rows = placed_rows(shells);
+    std::vector<FibreTiltSums> sums(shells.clusters());
+    std::vector<std::vector<TiltFrame>> frames(shells.clusters());
+    for (std::size_t c = 0; c < sums.size(); ++c) sums[c].rows.resize(rows);
     for (std::size_t s = 0; s < strands.strand_count(); ++s) {
         const std::size_t c = strand_cluster[s];
         if (c >= shells.clusters()) throw Error::parameter("fibre tilts", "a strand's cluster is out of range");
-        for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
-            const glm::vec3 d = orientation * (strands.points[k + 1] - strands.points[k]);
-            const float len = glm::length(d);
-            if (!(len > 0) || !std::isfinite(len)) continue;
-            const glm::vec3 mid = orientation * (0.5f * (strands.points[k] + strands.points[k + 1]));
-            // The nearest sample along the own axis (a curve of few rows, so a scan is cheap).
-            std::size_t best = c * rows;
-            float best_d2 = std::numeric_limits<float>::infinity();
-            for (std::size_t i = c * rows; i < (c + 1) * rows; ++i) {
-                const glm::vec3 e = glm::vec3(shells.samples[i].position) - mid;
-                const float d2 = glm::dot(e, e);
-                if (d2 < best_d2) best_d2 = d2, best = i;
-            }
-            const Frame& f = frames[best];
-            const glm::vec3 t = d / len;
-            const double angle = std::acos(std::clamp(double(glm::dot(t, f.T)), -1.0, 1.0));
-            const glm::dvec2 across(glm::dot(t, f.r), glm::dot(t, f.s));
-            const double across_len = glm::length(across);
-            const glm::dvec2 v = across_len > 1e-12 ? angle * across / across_len : glm::dvec2(0.0);
-            Moments& m = mom[best];
-            m.w += len;
-            m.sum += double(len) * v;
-            m.sum2 += double(len) * glm::dvec3(v.x * v.x, v.y * v.y, v.x * v.y);
-            angle2 += len * angle * angle;
-            weight += len;
-        }
+        if (frames[c].empty()) frames[c] = cluster_frames(shells, c, rows);
+        add_strand_tilts(sums[c], shells, c, frames[c], strands, s, orientation);
     }
-    for (std::size_t i = 0; i < shells.samples.size(); ++i) {
-        const Moments& m = mom[i];
-        LightingSample& q = shells.samples[i];
-        q.tilt_mean = q.tilt_a = q.tilt_b = glm::vec4(0.0f);
-        if (!(m.w > 0)) continue;
-        // The mean tilt and the covariance about it, and its eigen-decomposition (2 × 2, symmetric).
-        const glm::dvec2 mean = m.sum / m.w;
-        const double xx = m.sum2.x / m.w - mean.x * mean.x, yy = m.sum2.y / m.w - mean.y * mean.y,
-                     xy = m.sum2.z / m.w - mean.x * mean.y;
-        const double half_trace = 0.5 * (xx + yy), det = xx * yy - xy * xy;
-        const double disc = std::sqrt(std::max(0.0, half_trace * half_trace - det));
-        const double l1 = std::max(0.0, half_trace + disc), l2 = std::max(0.0, half_trace - disc);
-        const glm::dvec2 e1 = std::abs(xy) > 1e-12 ? glm::normalize(glm::dvec2(l1 - yy, xy))
-                                                   : (xx >= yy ? glm::dvec2(1.0, 0.0) : glm::dvec2(0.0, 1.0));
-        const glm::dvec2 e2(-e1.y, e1.x);
-        const Frame& f = frames[i];
-        const auto world = [&f](glm::dvec2 v) { return glm::vec4(float(v.x) * f.r + float(v.y) * f.s, 0.0f); };
-        // ±a, ±b with a = √(2 λ1) e1, b = √(2 λ2) e2: their second moment about the mean is λ1 e1e1ᵀ + λ2 e2e2ᵀ.
-        q.tilt_mean = world(mean);
-        q.tilt_a = world(std::sqrt(2.0 * l1) * e1);
-        q.tilt_b = world(std::sqrt(2.0 * l2) * e2);
-    }
-    return weight > 0 ? static_cast<float>(std::sqrt(angle2 / weight)) : 0.0f;
+    return set_fibre_tilts(shells, sums);
 }
 
 int lighting_step_within(const PreparedShells& shells, int wanted, float max_angle, std::vector<float>* worst) {

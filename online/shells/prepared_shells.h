@@ -122,6 +122,24 @@ void place_clusters(PreparedShells& shells, const HairStyle& style, const glm::m
 // of range.
 float measure_fibre_tilts(PreparedShells& shells, const Strands& strands, std::span<const std::uint32_t> strand_cluster,
                           const glm::mat3& orientation);
+// measure_fibre_tilts one cluster at a time (for a caller that keeps each cluster's sums between cooks of a style being
+// edited, online/scene/cook.h): the length-weighted tilt moments of a cluster's strands at each of its lighting samples,
+// summed in the strands' order, and its share of the RMS. set_fibre_tilts of every cluster's sums is
+// measure_fibre_tilts, bit for bit.
+struct FibreTiltSums {
+    struct Moments {
+        double w = 0;
+        glm::dvec2 sum{0.0};
+        glm::dvec3 sum2{0.0};  // xx, yy, xy
+    };
+    std::vector<Moments> rows;  // per lighting sample of the cluster
+    double angle2 = 0, weight = 0;
+};
+// `strands`: the cluster's own, as sampled (not turned). Throws as measure_fibre_tilts.
+FibreTiltSums cluster_fibre_tilt_sums(const PreparedShells& shells, std::size_t cluster, const Strands& strands,
+                                      const glm::mat3& orientation);
+// Sets every lighting sample's tilts from its cluster's sums (one per cluster, in order); returns the RMS tilt.
+float set_fibre_tilts(PreparedShells& shells, std::span<const FibreTiltSums> clusters);
 // How far the lighting can skip samples along the clusters (ShellSettings::lighting_step): the largest step k ≤ `wanted`
 // dividing lighting_rows − 1 at which 90 % of the skipped samples' axis tangents lie within `max_angle` radians of the
 // (normalised) linear interpolation between the lit samples around them. A curled style keeps every sample, a smooth

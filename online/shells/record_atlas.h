@@ -48,5 +48,16 @@ int atlas_value_index(int part, int channel);
 RecordAtlas pack_atlas(std::size_t records, int views, int hrir_length, const std::array<glm::vec4, kAtlasParts>& lo,
                        const std::array<glm::vec4, kAtlasParts>& scale,
                        const std::function<AtlasTexels(std::size_t record, int view, int x)>& values);
+// pack_atlas in two steps, for a caller that keeps records' tiles between packings (online/scene/cook.h's CookCache):
+// record_tiles quantises one record's texels into its kAtlasParts tiles with their borders (part by part, each
+// (hrir_length + 2 border) × (views + 2 border) RGBA8 texels, row by row), and place_record_tiles lays out an atlas
+// of `records` records and copies record i's tiles (`tiles(i)`, as record_tiles made them) into its place. The same
+// texels as pack_atlas. Throws coif::Error::parameter for tiles of another size.
+std::vector<std::uint8_t> record_tiles(int views, int hrir_length, const std::array<glm::vec4, kAtlasParts>& lo,
+                                       const std::array<glm::vec4, kAtlasParts>& scale,
+                                       const std::function<AtlasTexels(int view, int x)>& values);
+RecordAtlas place_record_tiles(std::size_t records, int views, int hrir_length, const std::array<glm::vec4, kAtlasParts>& lo,
+                               const std::array<glm::vec4, kAtlasParts>& scale,
+                               const std::function<const std::vector<std::uint8_t>&(std::size_t record)>& tiles);
 
 }  // namespace coif

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 
 namespace coif {
 
@@ -44,56 +45,165 @@ float DensityGrid::integrate(glm::vec3 p, glm::vec3 d, float length, float step)
     return static_cast<float>(sum * h);
 }
 
-DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim) {
-    if (strands.points.empty()) throw Error::parameter("shadow grid", "the style gives no strands to voxelize");
-    if (max_dim < 8 || max_dim > 512) throw Error::parameter("shadow grid", "voxels along the longest axis must be 8..512");
-    std::vector<glm::vec3> p(strands.points.size());
+namespace {
+// The sums' fixed point: a splat's ℓ t tᵀ in units of 2⁻²⁰ voxel of strand length (a splat is at most half a voxel: 2¹⁹
+// units), shared among its 8 voxels by trilinear weights in steps of 1/256 along each axis (so the 8 shares sum to the
+// splat exactly), 2⁻⁴⁴ voxel a unit of sum. A voxel's int64 sum holds 2²⁰ splats at the most.
+constexpr double kLengthUnits = 1048576.0;  // 2^20 per voxel
+constexpr int kWeightSteps = 256;
+constexpr double kSumUnits = kLengthUnits * kWeightSteps * kWeightSteps * kWeightSteps;  // 2^44 per voxel
+std::int64_t round_to_int(double x) { return static_cast<std::int64_t>(x < 0 ? x - 0.5 : x + 0.5); }
+}  // namespace
+
+std::pair<glm::vec3, glm::vec3> turned_bounds(const Strands& strands, const glm::mat3& orientation) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        p[i] = orientation * strands.points[i];
-        lo = glm::min(lo, p[i]);
-        hi = glm::max(hi, p[i]);
+    for (const glm::vec3& q : strands.points) {
+        const glm::vec3 p = orientation * q;
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
     }
-    DensityGrid g;
+    return {lo, hi};
+}
+
+namespace {
+// The voxel edge of a grid framing [lo, hi] with at most max_dim voxels along any axis: the longest side over
+// max_dim − 6 (two voxels of margin on each side, and up to two for the lattice), rounded up to a power of 2^(1/8), so
+// that bounds that move a little keep it.
+float lattice_voxel(glm::vec3 lo, glm::vec3 hi, int max_dim) {
+    const glm::vec3 size = glm::max(hi - lo, glm::vec3(1e-6f));
+    const double longest = std::max({size.x, size.y, size.z});
+    return static_cast<float>(std::exp2(std::ceil(8.0 * std::log2(longest / (max_dim - 6))) / 8.0));
+}
+}  // namespace
+
+GridSums::GridSums(glm::vec3 lo, glm::vec3 hi, int max_dim) : max_dim_(max_dim) {
+    if (max_dim < 8 || max_dim > 512) throw Error::parameter("shadow grid", "voxels along the longest axis must be 8..512");
+    if (!glm::all(glm::lessThanEqual(lo, hi))) throw Error::parameter("shadow grid", "the style gives no strands to voxelize");
+    frame_.voxel = lattice_voxel(lo, hi, max_dim);
+    frame(lo, hi);
+    sums_.assign(static_cast<std::size_t>(frame_.dims.x) * frame_.dims.y * frame_.dims.z, {});
+}
+
+void GridSums::frame(glm::vec3 lo, glm::vec3 hi) {
+    DensityGrid& g = frame_;
     g.strands_min = lo;
     g.strands_max = hi;
-    const glm::vec3 size = glm::max(hi - lo, glm::vec3(1e-6f));
-    const float longest = std::max({size.x, size.y, size.z});
-    g.voxel = longest / static_cast<float>(max_dim - 4);
-    g.dims = glm::min(glm::ivec3(glm::ceil(size / g.voxel)) + 4, glm::ivec3(max_dim));
-    g.origin = 0.5f * (lo + hi) - 0.5f * g.extent();
-    const std::size_t voxels = static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z;
-    std::vector<glm::vec4>& diagonal_xy = g.diagonal_xy.vector();
-    std::vector<glm::vec2>& off_diagonal = g.off_diagonal.vector();
-    diagonal_xy.assign(voxels, glm::vec4(0.0f));
-    off_diagonal.assign(voxels, glm::vec2(0.0f));
-    const float per_volume = 1.0f / (g.voxel * g.voxel * g.voxel);
-    // One sub-segment of length `length` along the unit tangent t at q: ℓ t tᵀ / V spread over 8 voxels.
+    first_ = glm::ivec3(glm::floor(lo / g.voxel)) - 2;
+    g.dims = glm::ivec3(glm::floor(hi / g.voxel)) + 2 - first_ + 1;
+    g.origin = glm::vec3(first_) * g.voxel;
+}
+
+bool GridSums::can_reframe(glm::vec3 lo, glm::vec3 hi) const {
+    return glm::all(glm::lessThanEqual(lo, hi)) && lattice_voxel(lo, hi, max_dim_) == frame_.voxel;
+}
+
+void GridSums::reframe(glm::vec3 lo, glm::vec3 hi) {
+    if (!can_reframe(lo, hi)) throw Error::parameter("shadow grid", "the new bounds need another voxel size");
+    const glm::ivec3 old_first = first_, old_dims = frame_.dims;
+    std::vector<std::array<std::int64_t, 6>> old = std::move(sums_);
+    frame(lo, hi);
+    const DensityGrid& g = frame_;
+    sums_.assign(static_cast<std::size_t>(g.dims.x) * g.dims.y * g.dims.z, {});
+    // The voxels in both windows, in lattice coordinates [from, to).
+    const glm::ivec3 from = glm::max(first_, old_first), to = glm::min(first_ + g.dims, old_first + old_dims);
+    if (glm::any(glm::greaterThanEqual(from, to))) return;
+    for (int z = from.z; z < to.z; ++z)
+        for (int y = from.y; y < to.y; ++y) {
+            const glm::ivec3 o = glm::ivec3(from.x, y, z) - old_first, n = glm::ivec3(from.x, y, z) - first_;
+            const std::size_t src = (static_cast<std::size_t>(o.z) * old_dims.y + o.y) * old_dims.x + o.x;
+            std::copy_n(old.begin() + static_cast<std::ptrdiff_t>(src), to.x - from.x,
+                        sums_.begin() + static_cast<std::ptrdiff_t>(g.index(n.x, n.y, n.z)));
+        }
+}
+
+namespace {
+// GridSums::add of the strands [first, last) into `sums` (of grid g's voxels).
+void splat_strands(const DensityGrid& g, std::vector<std::array<std::int64_t, 6>>& sums_, const Strands& strands,
+                   const glm::mat3& orientation, int sign, std::size_t first, std::size_t last) {
+    const double units = sign * kLengthUnits / g.voxel;  // per unit of strand length
+    // One sub-segment of length `length` along the unit tangent t at q: ℓ t tᵀ spread over 8 voxels.
     const auto splat = [&](glm::vec3 q, glm::vec3 t, float length) {
-        const float l = length * per_volume;
-        const glm::vec4 m = l * glm::vec4(t.x * t.x, t.y * t.y, t.z * t.z, t.x * t.y);
-        const glm::vec2 o = l * glm::vec2(t.x * t.z, t.y * t.z);
+        const double l = length * units;
+        const std::int64_t m[6] = {round_to_int(l * t.x * t.x), round_to_int(l * t.y * t.y), round_to_int(l * t.z * t.z),
+                                   round_to_int(l * t.x * t.y), round_to_int(l * t.x * t.z), round_to_int(l * t.y * t.z)};
         const glm::vec3 f0 = (q - g.origin) / g.voxel - 0.5f;
         const glm::ivec3 i0 = glm::ivec3(glm::floor(f0));
-        const glm::vec3 f = f0 - glm::vec3(i0);
+        const glm::ivec3 f = glm::ivec3(glm::round((f0 - glm::vec3(i0)) * float(kWeightSteps)));
+        const std::int64_t wx[2] = {kWeightSteps - f.x, f.x}, wy[2] = {kWeightSteps - f.y, f.y}, wz[2] = {kWeightSteps - f.z, f.z};
+        const auto add_to = [&](std::size_t at, std::int64_t w) {
+            std::array<std::int64_t, 6>& s = sums_[at];
+            for (int k = 0; k < 6; ++k) s[k] += w * m[k];
+        };
+        if (glm::all(glm::greaterThanEqual(i0, glm::ivec3(0))) && glm::all(glm::lessThan(i0 + 1, g.dims))) {  // all 8 inside
+            const std::size_t at = g.index(i0.x, i0.y, i0.z), row = static_cast<std::size_t>(g.dims.x),
+                              slice = row * static_cast<std::size_t>(g.dims.y);
+            for (int z = 0; z < 2; ++z)
+                for (int y = 0; y < 2; ++y) {
+                    const std::size_t line = at + z * slice + y * row;
+                    const std::int64_t wyz = wy[y] * wz[z];
+                    add_to(line, wx[0] * wyz);
+                    add_to(line + 1, wx[1] * wyz);
+                }
+            return;
+        }
         for (int c = 0; c < 8; ++c) {
             const glm::ivec3 i = i0 + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
             if (glm::any(glm::lessThan(i, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(i, g.dims))) continue;
-            const float w = ((c & 1) ? f.x : 1 - f.x) * ((c & 2) ? f.y : 1 - f.y) * ((c & 4) ? f.z : 1 - f.z);
-            diagonal_xy[g.index(i.x, i.y, i.z)] += w * m;
-            off_diagonal[g.index(i.x, i.y, i.z)] += w * o;
+            add_to(g.index(i.x, i.y, i.z), wx[c & 1] * wy[(c >> 1) & 1] * wz[(c >> 2) & 1]);
         }
     };
-    for (std::size_t s = 0; s + 1 < strands.offsets.size(); ++s)
+    for (std::size_t s = first; s < last; ++s)
         for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
-            const glm::vec3 a = p[k], b = p[k + 1];
+            const glm::vec3 a = orientation * strands.points[k], b = orientation * strands.points[k + 1];
             const float len = glm::distance(a, b);
             if (!(len > 0)) continue;
             const glm::vec3 t = (b - a) / len;
             const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5f * g.voxel))));
             for (int q = 0; q < n; ++q) splat(a + (b - a) * ((q + 0.5f) / n), t, len / n);
         }
+}
+}  // namespace
+
+void GridSums::add(const Strands& strands, const glm::mat3& orientation, int sign) {
+    const std::size_t n = strands.strand_count();
+    // Integer sums add up alike in any order: a large set is split among threads, each into its own sums, added after.
+    const std::size_t parts = strands.points.size() < 100000 ? 1 : static_cast<std::size_t>(std::min(hardware_threads(), 4));
+    if (parts == 1) {
+        splat_strands(frame_, sums_, strands, orientation, sign, 0, n);
+        return;
+    }
+    std::vector<std::vector<std::array<std::int64_t, 6>>> own(parts - 1);
+    parallel_for(parts, static_cast<int>(parts), [&](std::size_t i) {
+        if (i > 0) own[i - 1].assign(sums_.size(), {});
+        splat_strands(frame_, i == 0 ? sums_ : own[i - 1], strands, orientation, sign, n * i / parts, n * (i + 1) / parts);
+    });
+    for (const auto& o : own)
+        for (std::size_t v = 0; v < sums_.size(); ++v)
+            for (int k = 0; k < 6; ++k) sums_[v][k] += o[v][k];
+}
+
+DensityGrid GridSums::grid() const {
+    DensityGrid g = frame_;
+    const double per_volume = 1.0 / (kSumUnits * g.voxel * g.voxel);  // a unit of sum's strand length per unit volume
+    std::vector<glm::vec4>& diagonal_xy = g.diagonal_xy.vector();
+    std::vector<glm::vec2>& off_diagonal = g.off_diagonal.vector();
+    diagonal_xy.resize(sums_.size());
+    off_diagonal.resize(sums_.size());
+    for (std::size_t i = 0; i < sums_.size(); ++i) {
+        const std::array<std::int64_t, 6>& s = sums_[i];
+        const auto f = [&](int k) { return static_cast<float>(static_cast<double>(s[k]) * per_volume); };
+        diagonal_xy[i] = glm::vec4(f(0), f(1), f(2), f(3));
+        off_diagonal[i] = glm::vec2(f(4), f(5));
+    }
     return g;
+}
+
+DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim) {
+    if (strands.points.empty()) throw Error::parameter("shadow grid", "the style gives no strands to voxelize");
+    const auto [lo, hi] = turned_bounds(strands, orientation);
+    GridSums sums(lo, hi, max_dim);
+    sums.add(strands, orientation);
+    return sums.grid();
 }
 
 }  // namespace coif

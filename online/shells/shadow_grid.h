@@ -13,10 +13,13 @@
 //
 // Strands come from the style's densities (models/style_strands.h, the strands the reference
 // renderer draws), turned by `orientation`; each segment's length is split into sub-segments no
-// longer than half a voxel and splatted trilinearly. The grid spans the strands' bounds plus one
-// voxels on every side (so that trilinear splats and fetches lose nothing at the border), `max_dim`
-// voxels along the longest axis, cubic voxels.
+// longer than half a voxel and splatted trilinearly, summed in fixed point (GridSums). The grid spans the strands'
+// bounds plus two voxels on every side (so that trilinear splats and fetches lose nothing at the border), at most
+// `max_dim` voxels along the longest axis (at least 0.92 of it), cubic voxels on a lattice (GridSums::can_reframe).
+#include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <utility>
 #include <vector>
 
 #include "models/character.h"
@@ -53,6 +56,39 @@ inline constexpr int kShadowGridSize = 64;  // shadow grid voxels along the hair
 
 // Throws coif::Error::parameter on an empty strand set or max_dim outside 8..512.
 DensityGrid voxelize_strands(const Strands& strands, const glm::mat3& orientation, int max_dim);
+
+// The bounding box of the strands turned by `orientation` (what voxelize_strands frames).
+std::pair<glm::vec3, glm::vec3> turned_bounds(const Strands& strands, const glm::mat3& orientation);
+
+// What voxelize_strands sums, in fixed point (an int64 per value: each splat rounded to 2⁻²⁰ voxel of strand length and
+// shared by trilinear weights in steps of 1/256 voxel, online/shells/shadow_grid.cpp): integer sums do not depend on the
+// order in which strands are added or taken out. A
+// caller that keeps them (online/scene/cook.h's CookCache, for a style being edited) takes an edited cluster's old
+// strands out and puts its new ones in, and has the grid of voxelizing all of them, bit for bit, as long as their
+// bounds (the grid's frame) are the same.
+class GridSums {
+public:
+    // An empty grid framing the turned strands' bounds [lo, hi] as voxelize_strands does; throws as it does.
+    GridSums(glm::vec3 lo, glm::vec3 hi, int max_dim);
+    // Whether bounds [lo, hi] are framed with the same voxel size: then reframe keeps the sums. The voxel is on a
+    // lattice (a power of 2^(1/8), voxel corners at whole multiples of it), so bounds that move a little keep it.
+    bool can_reframe(glm::vec3 lo, glm::vec3 hi) const;
+    // The same sums framed for bounds [lo, hi] (can_reframe, or coif::Error::parameter), as a grid made for them frames
+    // them: the voxels of both frames keep their sums, the rest are dropped or empty. An edit's cook frames the union of
+    // the old and new bounds, takes the old strands out and puts the new ones in, then frames the new bounds.
+    void reframe(glm::vec3 lo, glm::vec3 hi);
+    // The strands turned by `orientation`, splatted in (sign 1) or taken out (sign −1).
+    void add(const Strands& strands, const glm::mat3& orientation, int sign = 1);
+    DensityGrid grid() const;
+    const DensityGrid& frame() const { return frame_; }  // the dimensions, origin, voxel and bounds; no values
+
+private:
+    void frame(glm::vec3 lo, glm::vec3 hi);  // the window of the lattice holding [lo, hi], at frame_.voxel
+    DensityGrid frame_;
+    int max_dim_ = 0;
+    glm::ivec3 first_{0};  // the lattice coordinates of voxel (0, 0, 0)
+    std::vector<std::array<std::int64_t, 6>> sums_;
+};
 
 // `grid` grown by whole voxels to hold the box [lo, hi] as well, at most by half its longest extent on each side (so at
 // most twice its longest side along any axis: 128³ voxels for the 64 of coif's grids, 48 MiB): the same voxels hold the

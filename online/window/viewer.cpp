@@ -100,10 +100,8 @@ public:
           environment_(o.environment),
           window_(o.view.width, o.view.height, "coif view"),
           authoring_(o.scene.cooked ? std::nullopt : std::optional<HairStyle>(o.scene.style), o.absorption),
-          framing_(o.scene.framing),
           lighting_rows_(o.scene.lighting_rows),
-          body_(o.scene.body),
-          scene_(scene_desc(o, &prototypes_)),
+          scene_(scene_desc(o, &cook_cache_)),
           background_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_background.frag"}),
           present_({"shaders/gl/fullscreen.vert", "shaders/gl/viewer_present.frag"}),
           copy_({"shaders/gl/fullscreen.vert", "shaders/gl/copy_texture.frag"}),
@@ -165,11 +163,11 @@ public:
     }
 
 private:
-    static HairSceneDesc scene_desc(ViewerOptions& o, PrototypeCache* cache) {
+    static HairSceneDesc scene_desc(ViewerOptions& o, CookCache* cache) {
         HairSceneDesc d = std::move(o.scene);
         d.headless = false;
         d.absorption = o.absorption ? &*o.absorption : nullptr;  // the options outlive the viewer (run_viewer)
-        d.prototype_cache = cache;
+        d.cook_cache = cache;
         return d;
     }
 
@@ -228,8 +226,14 @@ private:
                 case K::drag_point: {
                     int fb_w, fb_h;
                     glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
-                    authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), a.point, {a.x, a.y}, {a.to_x, a.to_y}, a.axis);
-                    sync();
+                    // As the mouse drags (handle_input): the drag starts at `from`, the cursor passes the steps.
+                    drag_point_ = a.point;
+                    drag_from_ = drag_applied_ = {a.x, a.y};
+                    drag_live_ = false;
+                    for (int k = 1; k <= a.steps; ++k)
+                        drag_to(glm::mix(drag_from_, glm::dvec2(a.to_x, a.to_y), double(k) / a.steps), fb_w, fb_h, a.axis);
+                    drag_point_ = -1;
+                    drag_live_ = false;
                     break;
                 }
                 case K::transform: {
@@ -327,19 +331,15 @@ private:
         glfwGetFramebufferSize(w, &fb_w, &fb_h);
         const glm::dvec2 at(x * fb_w / std::max(win_w, 1), y * fb_h / std::max(win_h, 1));  // framebuffer pixels
         // Cluster authoring: Alt + click selects the cluster under the cursor; a left drag from one of its control
-        // points' handles moves that point, committed (one edit, one cook) when the button is let go.
+        // points' handles moves that point with the cursor, once a frame, one undo step for the whole drag.
         if (drag_point_ >= 0) {
-            if (!left) {
-                const int point = drag_point_;
-                drag_point_ = -1;
-                try {
-                    authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), point, drag_from_, at, axis_lock_);
-                    sync();
-                    message_.clear();
-                } catch (const Error& e) {
-                    message_ = e.what();
-                }
+            try {
+                if (at != drag_applied_) drag_to(at, fb_w, fb_h, axis_lock_);
+                message_.clear();
+            } catch (const Error& e) {
+                message_ = e.what();
             }
+            if (!left) drag_point_ = -1, drag_live_ = false;
             last_x_ = x, last_y_ = y;
             return true;
         }
@@ -354,7 +354,8 @@ private:
             for (std::size_t i = 0; i < h.size(); ++i)
                 if (glm::distance(glm::dvec2(h[i]), at) <= kHandleRadius + 2) {
                     drag_point_ = static_cast<int>(i);
-                    drag_from_ = at;
+                    drag_from_ = drag_applied_ = at;
+                    drag_live_ = false;
                     return true;
                 }
         }
@@ -488,26 +489,50 @@ private:
         if (authoring_.style() && authoring_.style_version() != cooked_version_) {
             const auto t0 = Clock::now();
             const HairStyle& st = *authoring_.style();
-            ShellView v;
             try {
-                v = scene_.view_of(st, framing_, lighting_rows_, &prototypes_);
+                CookedShells cooked = scene_.cook(st, lighting_rows_, &cook_cache_);
+                int fb_w = 0, fb_h = 0;
+                glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+                refuse_eye_inside(camera_at(fb_w, fb_h), cooked.shells.bounds_min, cooked.shells.bounds_max);
+                // The same renderer, its programs compiled; the camera keeps its framing: an edit does not move the view.
+                scene_.renderer->set_hair(std::move(cooked));
             } catch (const Error&) {  // e.g. the eye inside the edited hair: back to the style drawn, and say why
                 authoring_.undo();
                 cooked_version_ = authoring_.style_version();
                 apply_paint();
                 throw;
             }
-            scene_.renderer = std::move(v.renderer);  // the camera keeps its framing: an edit does not move the view
             scene_.style = st;
-            scene_.renderer->set_lights(scene_.lights);
-            if (body_) scene_.renderer->set_body(&*body_, body_orientation(st));
             cooked_version_ = authoring_.style_version();
             recook_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-            log_message(LogLevel::info, "coif view: cooked the edited style in " + std::to_string(static_cast<int>(recook_ms_)) +
-                                            " ms (" + std::to_string(prototypes_.misses()) + " of " +
-                                            std::to_string(prototypes_.hits() + prototypes_.misses()) + " prototypes made anew)");
+            const CookCache::Timings& ct = cook_cache_.timings();
+            log_message(LogLevel::info, "coif view: applied the edit in " + std::to_string(static_cast<int>(recook_ms_)) +
+                                            " ms (cooked in " + std::to_string(static_cast<int>(ct.total_ms)) + " ms: " +
+                                            std::to_string(ct.prototypes_made) + " of " + std::to_string(ct.prototypes) +
+                                            " prototypes and " + std::to_string(ct.clusters_sampled) + " of " +
+                                            std::to_string(ct.clusters) + " clusters' strands made anew, the shadow grid " +
+                                            (ct.grid_rebuilt ? "voxelized again" : "updated") + ")");
         }
         apply_paint();
+    }
+    // The dragged control point moved with the cursor: the drag's last edit undone (without a cook) and the whole drag,
+    // from where it started, applied as one edit and cooked (what it did not change kept: CookCache). A refused edit
+    // or a failed cook ends the drag, with the style as it was before it drawn, and is rethrown.
+    void drag_to(glm::dvec2 at, int fb_w, int fb_h, int axis) {
+        try {
+            if (drag_live_) authoring_.undo();
+            drag_live_ = false;
+            authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), drag_point_, drag_from_, at, axis);
+            drag_live_ = true;
+            drag_applied_ = at;
+            sync();
+        } catch (const Error&) {
+            drag_point_ = -1;
+            drag_live_ = false;
+            cooked_version_ = ~std::uint64_t{0};  // the renderer may hold the drag's last cook: cook what is now
+            sync();
+            throw;
+        }
     }
     void save_style(const std::filesystem::path& path) {
         if (!authoring_.style()) throw Error::parameter("style", "a baked asset is view-only: there is no style to save");
@@ -600,10 +625,10 @@ private:
         for (const glm::vec2 h : hs)
             if (!std::isnan(h.x)) overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
         if (drag_point_ >= 0 && static_cast<std::size_t>(drag_point_) < hs.size() && !std::isnan(hs[static_cast<std::size_t>(drag_point_)].x)) {
-            // where the dragged point goes
+            // where the dragged point goes (the handle is where the last frame's edit put it)
             const glm::vec2 h = hs[static_cast<std::size_t>(drag_point_)];
             const ImVec2 from(h.x / scale.x, h.y / scale.y), mouse = ImGui::GetMousePos();
-            const ImVec2 to(from.x + mouse.x - float(drag_from_.x) / scale.x, from.y + mouse.y - float(drag_from_.y) / scale.y);
+            const ImVec2 to(from.x + mouse.x - float(drag_applied_.x) / scale.x, from.y + mouse.y - float(drag_applied_.y) / scale.y);
             overlay->AddLine(from, to, IM_COL32(255, 200, 40, 255), 2.0f);
             overlay->AddCircle(to, kHandleRadius + 2, IM_COL32(255, 255, 255, 255), 0, 2.0f);
         }
@@ -1009,14 +1034,14 @@ private:
     std::optional<LightsJob> fit_;
     float eumelanin_ = 1.3f, pheomelanin_ = 0.0f;
     Authoring authoring_;           // the style edited, the selection, the painting, and their one undo history
-    SceneFraming framing_;          // the scene's, to cook an edited style as it was cooked
     int lighting_rows_ = 0;
-    std::optional<BodyMesh> body_;  // the scene's body, set again on an edited style's renderer
     std::uint64_t cooked_version_ = 0;  // authoring_.style_version() of the style the renderer draws
-    PrototypeCache prototypes_;     // the prototypes of the last cook, for the next (an edit makes only what changed)
+    CookCache cook_cache_;          // what the last cook made, for the next (an edit makes only what it changed)
     double recook_ms_ = 0;          // the last edit's cooking
     int drag_point_ = -1;           // the control point the mouse drags (−1: none), from (drag_from_)
     glm::dvec2 drag_from_{0.0};
+    glm::dvec2 drag_applied_{0.0};  // the cursor as the drag's edit last applied it (drag_from_ before any)
+    bool drag_live_ = false;        // the drag's edit is applied (the top undo step)
     int axis_lock_ = -1;            // X, Y, Z keys: drags along that axis only
     char style_path_[512] = "style.json";
     Brush brush_;

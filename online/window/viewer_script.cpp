@@ -171,8 +171,11 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
                     if (x == "view") act.axis = -1;
                     else if (x == "x" || x == "y" || x == "z") act.axis = x.get<std::string>()[0] - 'x';
                     else throw Error(file, at + "/axis", "expected view, x, y or z");
+                } else if (k == "steps") {
+                    act.steps = static_cast<int>(number(x, file, at + "/steps", 1, 1000));
+                    if (x.get<double>() != act.steps) throw Error(file, at + "/steps", "expected a whole number");
                 } else {
-                    throw Error(file, at, "unknown key '" + k + "' (point, from, to, axis)");
+                    throw Error(file, at, "unknown key '" + k + "' (point, from, to, axis, steps)");
                 }
             }
         } else if (key == "transform" || key == "duplicate") {

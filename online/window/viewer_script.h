@@ -29,10 +29,11 @@
 // edit is one undo step with the strokes, and the shells are cooked again:
 //   {"select": ["c3", …]}                   select clusters by name ([]: none)
 //   {"pick": [X, Y]}                        select the cluster under window pixel (X, Y) (none there: none)
-//   {"drag_point": {"point": I, "from": [X, Y], "to": [X, Y], "axis": "view"|"x"|"y"|"z"}}
+//   {"drag_point": {"point": I, "from": [X, Y], "to": [X, Y], "axis": "view"|"x"|"y"|"z", "steps": N}}
 //                                           drag the selected cluster's trajectory control point I: it moves with the
 //                                           cursor in the plane facing the camera through it ("view", the default), or
-//                                           along one axis only
+//                                           along one axis only; the cursor passes N even steps (default 1), each
+//                                           applied as a mouse drag's frames are, the whole drag one undo step
 //   {"transform": {"translate": [X, Y, Z], "rotate_deg": [X, Y, Z], "scale": S}}   the selection moved (each key
 //                                           optional; turned and scaled about the centre of its roots)
 //   {"duplicate": {"translate": [X, Y, Z], "as_copy": false}}   copies of the selection, moved; they become the selection
@@ -71,6 +72,7 @@ struct ViewerAction {
     std::vector<std::string> names;          // select
     double to_x = 0, to_y = 0;               // drag_point: from (x, y) to (to_x, to_y)
     int point = 0;                           // drag_point
+    int steps = 1;                           // drag_point
     int axis = -1;                           // drag_point (−1: the view plane), mirror: 0, 1, 2 = x, y, z
     std::optional<double> at;                // mirror's plane
     glm::dvec3 translate{0.0}, rotate_deg{0.0};

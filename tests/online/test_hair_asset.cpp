@@ -101,23 +101,62 @@ TEST(HairAsset, HoldsOnlyTheRecordsItsSectorsUseAndDrawsAsTheWholeDatabase) {
     EXPECT_LE(diff, 1e-3 * mean);
 }
 
-TEST(HairAsset, ACookThatKeepsItsUnchangedPrototypesIsTheSameCook) {
-    // coif view's edits cook again keeping what did not change (PrototypeCache): the same bytes as a cook from nothing.
-    HairStyle s = test::two_cluster_style();
-    PrototypeCache cache;
-    (void)cook_shells(s, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
-    EXPECT_EQ(cache.hits(), 0u);
-    EXPECT_EQ(cache.misses(), 2u);
-    move_control_point(s, 1, 1, {0.5, 0.0, 0.3});  // the right cluster's middle point
-    const CookedShells kept = cook_shells(s, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
-    EXPECT_EQ(cache.hits(), 1u);
-    EXPECT_EQ(cache.misses(), 1u);
-    EXPECT_EQ(hair_asset_bytes(kept), hair_asset_bytes(cook_shells(s, test_index(), glm::mat3(1.0f))));
-    // Undone: the right cluster as it was is made again (the cache holds the last cook's prototypes only), the left kept.
-    HairStyle back = test::two_cluster_style();
-    const CookedShells undone = cook_shells(back, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
-    EXPECT_EQ(cache.hits(), 1u);
-    EXPECT_EQ(hair_asset_bytes(undone), hair_asset_bytes(cook_shells(back, test_index(), glm::mat3(1.0f))));
+TEST(HairAsset, ACookThatKeepsWhatAnEditDidNotChangeIsTheSameCook) {
+    // coif view's edits cook again keeping what did not change (CookCache: prototypes, clusters' strands and tilts, the
+    // grid's sums, the atlas's tiles): after every edit, the same bytes as a cook from nothing. The skinned style's asset
+    // holds the grid's strands too.
+    HairStyle s = test::two_cluster_style(true);
+    CookCache cache;
+    std::pair<glm::vec3, glm::vec3> bounds;  // the last cook's strands' (its grid's frame)
+    const auto same_as_from_nothing = [&](const char* what) {
+        SCOPED_TRACE(what);
+        const CookedShells kept = cook_shells(s, test_index(), glm::mat3(1.0f), 0, nullptr, &cache);
+        bounds = {kept.grid.strands_min, kept.grid.strands_max};
+        EXPECT_EQ(hair_asset_bytes(kept), hair_asset_bytes(cook_shells(s, test_index(), glm::mat3(1.0f))));
+        return cache.timings();
+    };
+    CookCache::Timings t = same_as_from_nothing("first cook");
+    EXPECT_EQ(t.prototypes_made, 2u);
+    EXPECT_EQ(t.clusters_sampled, 2u);
+    EXPECT_TRUE(t.grid_rebuilt);
+    EXPECT_GT(t.records_packed, 0u);
+    EXPECT_EQ(t.records_packed, t.records);
+    // The right cluster's middle point moved along its straight axis: its strands cross the same places, so the bounds
+    // stay, and the grid takes its old strands out and its new ones in.
+    move_control_point(s, 1, 1, {0.0, 0.5, 0.0});
+    t = same_as_from_nothing("right cluster's middle moved along it");
+    EXPECT_EQ(t.prototypes_made, 1u);
+    EXPECT_EQ(t.clusters_sampled, 1u);
+    EXPECT_FALSE(t.grid_rebuilt) << "this edit was chosen to keep the bounds; if sampling changed, choose another";
+    EXPECT_LT(t.records_packed, t.records);
+    // The right cluster's middle point moved out: the bounds change, but not the voxel size: the grid is framed anew.
+    const auto before = bounds;
+    move_control_point(s, 1, 1, {0.5, -0.5, 0.3});
+    t = same_as_from_nothing("right cluster bent");
+    EXPECT_NE(bounds, before);
+    EXPECT_EQ(t.clusters_sampled, 1u);
+    EXPECT_FALSE(t.grid_rebuilt);
+    // Its tip moved 6 down: the longest side grows, and with it the voxel: the grid is voxelized again.
+    move_control_point(s, 1, 2, {0.0, -6.0, 0.0});
+    t = same_as_from_nothing("right cluster longer");
+    EXPECT_TRUE(t.grid_rebuilt);
+    // A cook that throws (here: a density calling for more strands than the sampling allows, found after the
+    // prototypes were made) leaves the cache as the last cook left it.
+    HairStyle dense = s;
+    auto d = std::make_shared<DensitySource>(*dense.clusters[0].density);
+    d->value = 1e9;
+    dense.clusters[0].density = d;
+    EXPECT_THROW(cook_shells(dense, test_index(), glm::mat3(1.0f), 0, nullptr, &cache), Error);
+    // Undone back to the first style: the right cluster as it was is made again (the cache holds the last cook's only).
+    s = test::two_cluster_style(true);
+    t = same_as_from_nothing("undone");
+    EXPECT_EQ(t.prototypes_made, 1u);
+    EXPECT_EQ(t.clusters_sampled, 1u);
+    // A deleted cluster: the remaining one's index changes, so its strands are sampled again.
+    const std::vector<std::size_t> first{0};
+    delete_clusters(s, first);
+    t = same_as_from_nothing("left deleted");
+    EXPECT_EQ(t.clusters, 1u);
 }
 
 TEST(HairAsset, RefusesTruncatedCorruptAndOtherVersionFiles) {

@@ -198,6 +198,37 @@ TEST(Viewer, APaintedStrokeDarkensWhereItIsAndUndoRedoAndSaveAreExact) {
     fs::remove_all(dir);
 }
 
+TEST(Viewer, ADragFollowsTheCursorAsOneUndoStep) {
+    // A drag applies its edit at every step of the cursor (each undoing the last: what the mouse does once a frame, the
+    // edit cooked keeping what it did not change) and is one undo step: 4 steps end where one step to the same place
+    // does, and one undo gives back the style before the drag, byte for byte.
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-live-drag");
+    const std::string d = dir.string() + "/";
+    write_text(dir / "script.json", R"([{"panel": false}, {"pick": [120, 60]}, {"save_style": ")" + d + R"(before.json"},
+        {"drag_point": {"point": 2, "from": [120, 60], "to": [160, 40], "steps": 4}}, {"save_style": ")" + d + R"(live.json"},
+        {"undo": true}, {"save_style": ")" + d + R"(undone.json"},
+        {"drag_point": {"point": 2, "from": [120, 60], "to": [160, 40]}}, {"save_style": ")" + d + R"(once.json"}])");
+    const auto r = run_coif("view --width 240 --height 160 --samples 1 --script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto text = [](const fs::path& p) {
+        std::ifstream in(p);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_NE(text(dir / "live.json"), text(dir / "before.json"));
+    EXPECT_EQ(text(dir / "live.json"), text(dir / "once.json"));
+    EXPECT_EQ(text(dir / "undone.json"), text(dir / "before.json"));
+    // Each step cooked what it changed only: one prototype made anew (the undo's cook too: the dragged one as it was).
+    const auto count = [&](const std::string& what) {
+        int n = 0;
+        for (std::size_t at = r.err.find(what); at != std::string::npos; at = r.err.find(what, at + 1)) ++n;
+        return n;
+    };
+    EXPECT_EQ(count("applied the edit"), 6) << r.err;
+    EXPECT_EQ(count("ms: 1 of "), 6) << r.err;
+    fs::remove_all(dir);
+}
+
 TEST(Viewer, ADraggedControlPointUndoesRedoesAndSavesExactly) {
     // Issue 20's scripted session: a parameter changed, a stroke painted, a cluster picked and one of its control
     // points dragged, undone, redone, and the style and the map saved. The undone drag gives back the style byte for
