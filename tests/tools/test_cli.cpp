@@ -28,7 +28,7 @@ TEST(Cli, HelpListsEveryNounAndExitsZero) {
 
 // Every leaf subcommand's help has a description and an example.
 TEST(Cli, EverySubcommandHelpTeaches) {
-    for (const char* cmd : {"hair inspect", "hair convert", "render", "bake", "view", "bench gl", "bench load"}) {
+    for (const char* cmd : {"hair inspect", "hair convert", "render", "bake", "view", "bench gl", "bench load", "bench edit"}) {
         const auto r = run_coif(std::string(cmd) + " --help");
         EXPECT_EQ(r.exit_code, 0) << cmd;
         EXPECT_THAT(r.out, HasSubstr("Examples:")) << cmd;
@@ -597,6 +597,23 @@ TEST(Cli, BenchLoadTimesTheAssetBesideTheStyle) {
     EXPECT_EQ(j["asset_first"]["cook_ms"].get<double>(), 0.0);
     EXPECT_GT(j["style_and_database_first"]["cook_ms"].get<double>(), 0.0);
     EXPECT_EQ(temporaries(), before);
+}
+
+TEST(Cli, BenchEditTimesAnEditThatKeepsWhatItDidNotChange) {
+    // coif bench edit: one dragged control point at a time, cooked keeping the rest, beside a cook from nothing. The
+    // figures vary (none is bounded: a benchmark); what is checked is what the edits made anew, and that the last one's
+    // cook is a cook from nothing's bytes.
+    auto r = run_coif("bench edit --edits 2 --repeats 1 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["same_as_cook_from_nothing"].get<bool>());
+    EXPECT_EQ(j["prototypes_made"].get<int>(), 1);
+    EXPECT_GE(j["clusters_sampled"].get<int>(), 1);
+    EXPECT_LT(j["clusters_sampled"].get<int>(), j["clusters"].get<int>());
+    for (const char* key : {"baseline_cook_ms", "edit_ms", "edit_cook_ms", "edit_set_hair_ms"}) EXPECT_GT(j[key].get<double>(), 0.0) << key;
+    r = run_coif("bench edit --cluster 100000");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("clusters"));
 }
 
 }  // namespace
