@@ -53,13 +53,45 @@ std::optional<std::size_t> Authoring::symmetric_partner(std::size_t c) const {
     return mirror_partner(*style_, c, 0, roots_middle(*style_, 0), kSymmetryTolerance * length);
 }
 
-void Authoring::edit_clusters(const std::vector<std::size_t>& cs, const std::function<void(HairStyle&)>& f) {
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (edited, its partner), before the edit
+std::vector<std::pair<std::size_t, std::size_t>> Authoring::partners(const std::vector<std::size_t>& cs) const {
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
     for (const std::size_t c : cs)
         if (const std::optional<std::size_t> p = symmetric_partner(c);
             p && std::find(cs.begin(), cs.end(), *p) == cs.end() &&
             std::none_of(pairs.begin(), pairs.end(), [&](const auto& q) { return q.second == *p; }))
             pairs.emplace_back(c, *p);
+    return pairs;
+}
+
+void Authoring::remove(const std::vector<std::size_t>& cs) {
+    std::vector<std::size_t> gone = cs;
+    for (const auto& [c, p] : partners(cs)) gone.push_back(p);
+    edit([&](HairStyle& s, AbsorptionMap* map) {
+        delete_clusters(s, gone, map);
+        return std::vector<std::size_t>{};
+    });
+    selection_.clear();
+}
+
+void Authoring::duplicate(const std::vector<std::size_t>& cs, bool as_instances, const glm::dvec3& translate) {
+    const std::vector<std::pair<std::size_t, std::size_t>> pairs = partners(cs);
+    const double at = style_ ? roots_middle(*style_, 0) : 0.0;  // the plane the partners mirror each other across
+    edit([&](HairStyle& s, AbsorptionMap* map) {
+        std::vector<std::size_t> made =
+            duplicate_clusters(s, cs, as_instances, similarity_about(s, cs, translate, glm::dvec3(0.0), 1.0), map);
+        std::vector<std::size_t> paired;  // the copies of the clusters with partners, whose mirror images are made too
+        for (const auto& [c, p] : pairs)
+            paired.push_back(made[static_cast<std::size_t>(std::find(cs.begin(), cs.end(), c) - cs.begin())]);
+        if (!paired.empty()) {
+            const std::vector<std::size_t> mirrored = mirror_clusters(s, paired, 0, at, map);
+            made.insert(made.end(), mirrored.begin(), mirrored.end());
+        }
+        return made;
+    });
+}
+
+void Authoring::edit_clusters(const std::vector<std::size_t>& cs, const std::function<void(HairStyle&)>& f) {
+    const std::vector<std::pair<std::size_t, std::size_t>> pairs = partners(cs);  // (edited, its partner), before the edit
     const double at = style_ ? roots_middle(*style_, 0) : 0.0;
     edit([&](HairStyle& s, AbsorptionMap*) {
         f(s);

@@ -49,6 +49,12 @@ public:
     // becomes `cs`.
     void edit_clusters(const std::vector<std::size_t>& cs, const std::function<void(HairStyle&)>& f);
     void edit_cluster(std::size_t c, const std::function<void(HairStyle&)>& f) { edit_clusters({c}, f); }
+    // Clusters `cs` removed, one undo step; in symmetry mode each one's mirror partner too. The selection becomes none.
+    void remove(const std::vector<std::size_t>& cs);
+    // Copies of clusters `cs` moved by `translate` (about their roots' centre), as instances or as new prototypes, one
+    // undo step (models/style_edit.h duplicate_clusters); in symmetry mode each copy of a cluster with a mirror partner
+    // gets its mirror image beside the partner, so that the style stays symmetric. The copies become the selection.
+    void duplicate(const std::vector<std::size_t>& cs, bool as_instances, const glm::dvec3& translate);
     void set_symmetry(bool on) { symmetry_ = on; }
     bool symmetry() const { return symmetry_; }
     // The partner a symmetric edit of `c` would change now (none without symmetry mode or without one).
@@ -71,6 +77,8 @@ private:
         std::optional<AbsorptionMap> map;
     };
     Snapshot current() const;
+    // Each of `cs` with its mirror partner (symmetric_partner) when the partner is not in `cs`, each partner once.
+    std::vector<std::pair<std::size_t, std::size_t>> partners(const std::vector<std::size_t>& cs) const;
     void restore(Snapshot s);
     void push_step();  // what is now, as the step undo goes back to; the redo steps dropped
     bool step(std::vector<Snapshot>& from, std::vector<Snapshot>& to);  // undo (from undo_ to redo_) or redo

@@ -245,10 +245,7 @@ private:
                     break;
                 }
                 case K::duplicate:
-                    authoring_.edit([&](HairStyle& st, AbsorptionMap* map) {
-                        const std::vector<std::size_t> sel = selected();
-                        return duplicate_clusters(st, sel, !a.as_copy, similarity_about(st, sel, a.translate, glm::dvec3(0.0), 1.0), map);
-                    });
+                    authoring_.duplicate(selected(), !a.as_copy, a.translate);
                     sync();
                     break;
                 case K::mirror:
@@ -258,10 +255,7 @@ private:
                     sync();
                     break;
                 case K::remove:
-                    authoring_.edit([&](HairStyle& st, AbsorptionMap* map) {
-                        delete_clusters(st, selected(), map);
-                        return std::vector<std::size_t>{};
-                    });
+                    authoring_.remove(selected());
                     sync();
                     break;
                 case K::profile: {
@@ -563,17 +557,14 @@ private:
     // The panel's and the keys' edits of the selection; a refusal is shown, not thrown.
     void cluster_edit(const std::string& what) {
         try {
-            authoring_.edit([&](HairStyle& st, AbsorptionMap* map) -> std::vector<std::size_t> {
-                const std::vector<std::size_t> sel = selected();
-                if (what == "delete") {
-                    delete_clusters(st, sel, map);
-                    return {};
-                }
-                if (what == "mirror") return mirror_clusters(st, sel, 0, roots_middle(st, 0), map);
-                // A copy beside the original: moved by its cluster's mean half-axis along x.
-                const double step = 2.0 * st.clusters[sel[0]].placement.scale * st.clusters[sel[0]].shape->a(0.5);
-                return duplicate_clusters(st, sel, true, similarity_about(st, sel, {step, 0.0, 0.0}, glm::dvec3(0.0), 1.0), map);
-            });
+            const std::vector<std::size_t> sel = selected();
+            if (what == "delete") authoring_.remove(sel);
+            else if (what == "mirror")
+                authoring_.edit([&](HairStyle& st, AbsorptionMap* map) { return mirror_clusters(st, sel, 0, roots_middle(st, 0), map); });
+            else {  // a copy beside the original: moved by its cluster's mean half-axis along x
+                const Cluster& c = authoring_.style()->clusters[sel[0]];
+                authoring_.duplicate(sel, true, {2.0 * c.placement.scale * c.shape->a(0.5), 0.0, 0.0});
+            }
             sync();
             message_.clear();
         } catch (const Error& e) {

@@ -111,6 +111,46 @@ TEST(Authoring, SymmetryModeMirrorsAnEditOntoThePartnerInTheSameUndoStep) {
     EXPECT_EQ(point(1, 2), right_tip);
 }
 
+TEST(Authoring, SymmetryModeDuplicatesAndDeletesThePartnerToo) {
+    // left and right mirror each other across x = 0. With symmetry on, a copy of left gets its mirror image beside
+    // right (the style stays symmetric), and deleting left deletes right too; each one undo step. Off: left alone.
+    Authoring a(two(), AbsorptionMap(2, 4, glm::vec3(1.0f)));
+    const std::string start = style_text(*a.style());
+    const auto point = [&](std::size_t c, std::size_t i) {
+        const Cluster& cl = a.style()->clusters[c];
+        return cl.placement.apply(a.style()->clusters[cl.prototype].shape->trajectory().control()[i]);
+    };
+    a.duplicate({0}, true, {-1.0, 0.0, 0.5});
+    ASSERT_EQ(a.style()->clusters.size(), 3u);
+    EXPECT_EQ(a.selection(), std::vector<std::size_t>{2});
+    ASSERT_TRUE(a.undo());
+    a.set_symmetry(true);
+    a.duplicate({0}, true, {-1.0, 0.0, 0.5});
+    ASSERT_EQ(a.style()->clusters.size(), 4u);
+    EXPECT_EQ(a.selection(), (std::vector<std::size_t>{2, 3}));
+    EXPECT_EQ(a.map()->clusters, 4);  // the painted rows follow
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_LT(glm::distance(point(2, i), point(0, i) + glm::dvec3(-1.0, 0.0, 0.5)), 1e-9) << i;  // the copy, moved
+        const glm::dvec3 l = point(2, i), r = point(3, i);
+        EXPECT_LT(glm::distance(r, glm::dvec3(-l.x, l.y, l.z)), 1e-9) << i;  // its mirror image
+    }
+    // The copy deleted: its mirror image goes with it, back to the two clusters as they were.
+    a.remove({2});
+    EXPECT_EQ(style_text(*a.style()), start);
+    EXPECT_TRUE(a.selection().empty());
+    EXPECT_EQ(a.map()->clusters, 2);
+    ASSERT_TRUE(a.undo());
+    EXPECT_EQ(a.style()->clusters.size(), 4u);
+    ASSERT_TRUE(a.undo());
+    EXPECT_EQ(style_text(*a.style()), start);
+    EXPECT_THROW(a.remove({0}), Error);  // left and its partner: nothing would remain
+    EXPECT_EQ(style_text(*a.style()), start);
+    a.set_symmetry(false);
+    a.remove({0});
+    ASSERT_EQ(a.style()->clusters.size(), 1u);
+    EXPECT_EQ(a.style()->clusters[0].name, "right");
+}
+
 TEST(Authoring, ADraggedPointFollowsTheCursorInThePlaneFacingTheCameraOrAlongItsAxis) {
     Authoring a(two(), std::nullopt);
     Camera cam;  // at (0, 0, 50) looking at the origin, 720 × 480, 40°
