@@ -64,7 +64,7 @@ const double kMaxElevation = glm::radians(89.0);
 // Each wheel step moves the eye 10 % nearer (or farther), within [0.1, 10] times the framing distance.
 constexpr double kZoomPerStep = 0.9, kMinZoom = 0.1, kMaxZoom = 10.0;
 constexpr float kExposureStep = 1.0f / 3.0f;  // stops per + / − key
-constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera is dragged
+constexpr int kDragDivisor = 2;                // the frame's size divisor while the camera or a control point is dragged
 constexpr float kPanelWidth = 300.0f, kPanelLabels = 130.0f;  // pixels: the panel, and its labels' column
 constexpr int kRefineGrid = 2;      // still: 2 × 2 shifted frames averaged (coif render --samples 4)
 constexpr float kHandleRadius = 5.0f;  // pixels: a control point's handle
@@ -609,10 +609,12 @@ private:
     }
 
     // The panel's cluster section, and the handles drawn over the picture.
+    // The camera or a control point is dragged: frames are drawn at half size and the low preset (kDragDivisor).
+    bool moving() const { return dragging_ || drag_point_ >= 0; }
     void clusters_panel(int width, int height) {
         const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
         ImDrawList* overlay = ImGui::GetForegroundDrawList();
-        const std::vector<glm::vec2> hs = handles(width * (dragging_ ? kDragDivisor : 1), height * (dragging_ ? kDragDivisor : 1));
+        const std::vector<glm::vec2> hs = handles(width * (moving() ? kDragDivisor : 1), height * (moving() ? kDragDivisor : 1));
         for (const glm::vec2 h : hs)
             if (!std::isnan(h.x)) overlay->AddCircleFilled(ImVec2(h.x / scale.x, h.y / scale.y), kHandleRadius, IM_COL32(255, 200, 40, 220));
         if (drag_point_ >= 0 && static_cast<std::size_t>(drag_point_) < hs.size() && !std::isnan(hs[static_cast<std::size_t>(drag_point_)].x)) {
@@ -727,7 +729,7 @@ private:
         if (result_.frames == 0) ImGui::Text("%dx%d  the first frame", width, height);
         else  // the frame before this one, display included
             ImGui::Text("%dx%d  %.0f ms (%.1f fps)%s", width, height, result_.last_frame_ms,
-                        1000.0 / std::max(result_.last_frame_ms, 1e-3), dragging_ ? "  half size, quality low" : "");
+                        1000.0 / std::max(result_.last_frame_ms, 1e-3), moving() ? "  half size, quality low" : "");
         ImGui::Text("lighting %.0f ms, shells %.0f ms (resolve %.0f)", t.lighting_wall_ms, t.shells_wall_ms, t.resolve_wall_ms);
         ImGui::SliderFloat("exposure (stops)", &exposure_, -10.0f, 10.0f, "%.2f");
         ImGui::Checkbox("environment (B)", &environment_);
@@ -812,12 +814,12 @@ private:
         int fb_w, fb_h;
         glfwGetFramebufferSize(w, &fb_w, &fb_h);
         if (fb_w <= 0 || fb_h <= 0) return;  // minimised
-        const int divisor = dragging_ ? kDragDivisor : 1;
+        const int divisor = moving() ? kDragDivisor : 1;
         const int width = std::max(1, fb_w / divisor), height = std::max(1, fb_h / divisor);
         if (target_width_ != width || target_height_ != height) make_target(width, height);
         const FrameKey key{width, height, camera_.azimuth, camera_.elevation, camera_.zoom, camera_.pan, environment_,
                            shell_settings_json(settings_).dump(), version_};
-        const bool still = key == last_key_ && !dragging_ && o_.offscreen_frames == 0;
+        const bool still = key == last_key_ && !moving() && o_.offscreen_frames == 0;
         last_key_ = key;
         if (!still) {
             draw_picture(glm::vec2(0.0f), width, height, framebuffer_);
@@ -854,9 +856,10 @@ private:
         ShellRenderer& r = *scene_.renderer;
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
         glViewport(0, 0, width, height);
-        // While the camera is dragged, the low preset (ShellSettings' quality presets) on top of the panel's parameters.
+        // While the camera or a control point is dragged, the low preset (ShellSettings' quality presets) on top of the
+        // panel's parameters.
         ShellSettings s = settings_;
-        if (dragging_) apply_quality(s, Quality::low);
+        if (moving()) apply_quality(s, Quality::low);
         // A frame whose fragments overflowed the exact compositing's storage has holes; the storage has grown
         // since, so it is drawn again (the first frame, a closer view).
         for (int attempt = 0; attempt < 2; ++attempt) {
