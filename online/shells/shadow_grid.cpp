@@ -117,18 +117,19 @@ void GridSums::reframe(glm::vec3 lo, glm::vec3 hi) {
 }
 
 namespace {
-// GridSums::add of the strands [first, last) into `sums` (of grid g's voxels).
-void splat_strands(const DensityGrid& g, std::vector<std::array<std::int64_t, 6>>& sums_, const Strands& strands,
-                   const glm::mat3& orientation, int sign, std::size_t first, std::size_t last) {
+// GridSums::add of the strands [from, to) into `sums` (of grid g's voxels, whose voxel (0, 0, 0) is `first` on the lattice).
+void splat_strands(const DensityGrid& g, glm::ivec3 first, std::vector<std::array<std::int64_t, 6>>& sums_,
+                   const Strands& strands, const glm::mat3& orientation, int sign, std::size_t from, std::size_t to) {
     const double units = sign * kLengthUnits / g.voxel;  // per unit of strand length
     // One sub-segment of length `length` along the unit tangent t at q: ℓ t tᵀ spread over 8 voxels.
     const auto splat = [&](glm::vec3 q, glm::vec3 t, float length) {
         const double l = length * units;
         const std::int64_t m[6] = {round_to_int(l * t.x * t.x), round_to_int(l * t.y * t.y), round_to_int(l * t.z * t.z),
                                    round_to_int(l * t.x * t.y), round_to_int(l * t.x * t.z), round_to_int(l * t.y * t.z)};
-        const glm::vec3 f0 = (q - g.origin) / g.voxel - 0.5f;
-        const glm::ivec3 i0 = glm::ivec3(glm::floor(f0));
-        const glm::ivec3 f = glm::ivec3(glm::round((f0 - glm::vec3(i0)) * float(kWeightSteps)));
+        // On the lattice, not the window (first: its voxel (0, 0, 0)), so that a strand splats alike in any window.
+        const glm::vec3 f0 = q / g.voxel - 0.5f;
+        const glm::ivec3 l0 = glm::ivec3(glm::floor(f0)), i0 = l0 - first;
+        const glm::ivec3 f = glm::ivec3(glm::round((f0 - glm::vec3(l0)) * float(kWeightSteps)));
         const std::int64_t wx[2] = {kWeightSteps - f.x, f.x}, wy[2] = {kWeightSteps - f.y, f.y}, wz[2] = {kWeightSteps - f.z, f.z};
         const auto add_to = [&](std::size_t at, std::int64_t w) {
             std::array<std::int64_t, 6>& s = sums_[at];
@@ -152,7 +153,7 @@ void splat_strands(const DensityGrid& g, std::vector<std::array<std::int64_t, 6>
             add_to(g.index(i.x, i.y, i.z), wx[c & 1] * wy[(c >> 1) & 1] * wz[(c >> 2) & 1]);
         }
     };
-    for (std::size_t s = first; s < last; ++s)
+    for (std::size_t s = from; s < to; ++s)
         for (std::uint32_t k = strands.offsets[s]; k + 1 < strands.offsets[s + 1]; ++k) {
             const glm::vec3 a = orientation * strands.points[k], b = orientation * strands.points[k + 1];
             const float len = glm::distance(a, b);
@@ -169,13 +170,13 @@ void GridSums::add(const Strands& strands, const glm::mat3& orientation, int sig
     // Integer sums add up alike in any order: a large set is split among threads, each into its own sums, added after.
     const std::size_t parts = strands.points.size() < 100000 ? 1 : static_cast<std::size_t>(std::min(hardware_threads(), 4));
     if (parts == 1) {
-        splat_strands(frame_, sums_, strands, orientation, sign, 0, n);
+        splat_strands(frame_, first_, sums_, strands, orientation, sign, 0, n);
         return;
     }
     std::vector<std::vector<std::array<std::int64_t, 6>>> own(parts - 1);
     parallel_for(parts, static_cast<int>(parts), [&](std::size_t i) {
         if (i > 0) own[i - 1].assign(sums_.size(), {});
-        splat_strands(frame_, i == 0 ? sums_ : own[i - 1], strands, orientation, sign, n * i / parts, n * (i + 1) / parts);
+        splat_strands(frame_, first_, i == 0 ? sums_ : own[i - 1], strands, orientation, sign, n * i / parts, n * (i + 1) / parts);
     });
     for (const auto& o : own)
         for (std::size_t v = 0; v < sums_.size(); ++v)
