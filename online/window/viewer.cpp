@@ -229,11 +229,11 @@ private:
                     // As the mouse drags (handle_input): the drag starts at `from`, the cursor passes the steps.
                     drag_point_ = a.point;
                     drag_from_ = drag_applied_ = {a.x, a.y};
-                    drag_live_ = false;
+                    end_live();
                     for (int k = 1; k <= a.steps; ++k)
                         drag_to(glm::mix(drag_from_, glm::dvec2(a.to_x, a.to_y), double(k) / a.steps), fb_w, fb_h, a.axis);
                     drag_point_ = -1;
-                    drag_live_ = false;
+                    end_live();
                     break;
                 }
                 case K::transform: {
@@ -333,7 +333,10 @@ private:
             } catch (const Error& e) {
                 message_ = e.what();
             }
-            if (!left) drag_point_ = -1, drag_live_ = false;
+            if (!left) {
+                drag_point_ = -1;
+                end_live();
+            }
             last_x_ = x, last_y_ = y;
             return true;
         }
@@ -349,7 +352,7 @@ private:
                 if (glm::distance(glm::dvec2(h[i]), at) <= kHandleRadius + 2) {
                     drag_point_ = static_cast<int>(i);
                     drag_from_ = drag_applied_ = at;
-                    drag_live_ = false;
+                    end_live();
                     return true;
                 }
         }
@@ -509,22 +512,32 @@ private:
         }
         apply_paint();
     }
-    // The dragged control point moved with the cursor: the drag's last edit undone (without a cook) and the whole drag,
-    // from where it started, applied as one edit and cooked (what it did not change kept: CookCache). A refused edit
-    // or a failed cook ends the drag, with the style as it was before it drawn, and is rethrown.
-    void drag_to(glm::dvec2 at, int fb_w, int fb_h, int axis) {
+    // An edit that follows the cursor or a field while it is dragged (a live gesture): the gesture's last edit undone
+    // (without a cook) and `apply` made and cooked (what it did not change kept: CookCache), so that the gesture is one
+    // undo step; end_live() ends it. A refused edit or a failed cook ends it, with the style as it was before it drawn,
+    // and is rethrown.
+    void live_edit(const std::function<void()>& apply) {
         try {
-            if (drag_live_) authoring_.undo();
-            drag_live_ = false;
-            authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), drag_point_, drag_from_, at, axis);
-            drag_live_ = true;
-            drag_applied_ = at;
+            if (live_) authoring_.undo();
+            live_ = false;
+            apply();
+            live_ = true;
             sync();
         } catch (const Error&) {
-            drag_point_ = -1;
-            drag_live_ = false;
-            cooked_version_ = ~std::uint64_t{0};  // the renderer may hold the drag's last cook: cook what is now
+            live_ = false;
+            cooked_version_ = ~std::uint64_t{0};  // the renderer may hold the gesture's last cook: cook what is now
             sync();
+            throw;
+        }
+    }
+    void end_live() { live_ = false; }
+    // The dragged control point moved with the cursor, from where the drag started (live_edit).
+    void drag_to(glm::dvec2 at, int fb_w, int fb_h, int axis) {
+        try {
+            live_edit([&] { authoring_.drag_point(camera_at(fb_w, fb_h), orientation(), drag_point_, drag_from_, at, axis); });
+            drag_applied_ = at;
+        } catch (const Error&) {
+            drag_point_ = -1;
             throw;
         }
     }
@@ -572,8 +585,8 @@ private:
         }
     }
 
-    // The selected cluster's A, B and θ control points (its prototype's: every instance of it changes too), each
-    // edit landing when its field is let go (one undo step, one cook).
+    // The selected cluster's A, B and θ control points (its prototype's: every instance of it changes too): a field
+    // dragged or typed in changes the style as it changes (live_edit), one undo step until it is let go.
     void profile_widgets() {
         const std::size_t c = authoring_.selection()[0];
         const HairStyle& st = *authoring_.style();
@@ -581,24 +594,26 @@ private:
         const auto row = [&](const char* name, const Spline1& spline, double unit, float lo, float hi) {
             std::vector<float> v;
             for (const double x : spline.control()) v.push_back(static_cast<float>(x * unit));
-            bool done = false;
+            bool edited = false, let_go = false;
             ImGui::PushID(name);
             for (std::size_t i = 0; i < v.size(); ++i) {
                 ImGui::PushID(static_cast<int>(i));
                 ImGui::DragFloat(i == 0 ? name : "##more", &v[i], 0.01f * (hi - lo), lo, hi, "%.3g");
-                done |= ImGui::IsItemDeactivatedAfterEdit();
+                edited |= ImGui::IsItemEdited();
+                let_go |= ImGui::IsItemDeactivated();
                 ImGui::PopID();
             }
             ImGui::PopID();
-            if (!done) return;
-            std::vector<double> values(v.begin(), v.end());
-            try {
-                authoring_.edit_cluster(c, [&](HairStyle& s2) { set_profile(s2, c, name, values); });
-                sync();
-                message_.clear();
-            } catch (const Error& e) {
-                message_ = e.what();
+            if (edited) {
+                const std::vector<double> values(v.begin(), v.end());
+                try {
+                    live_edit([&] { authoring_.edit_cluster(c, [&](HairStyle& s2) { set_profile(s2, c, name, values); }); });
+                    message_.clear();
+                } catch (const Error& e) {
+                    message_ = e.what();
+                }
             }
+            if (let_go) end_live();
         };
         if (!ImGui::TreeNode("profiles (root to tip)")) return;
         const float size = static_cast<float>(2.0 * std::max(g.a(0.5), g.b(0.5)) + 1.0);
@@ -609,8 +624,9 @@ private:
     }
 
     // The panel's cluster section, and the handles drawn over the picture.
-    // The camera or a control point is dragged: frames are drawn at half size and the low preset (kDragDivisor).
-    bool moving() const { return dragging_ || drag_point_ >= 0; }
+    // The camera, a control point or a profile field is dragged: frames are drawn at half size and the low preset
+    // (kDragDivisor).
+    bool moving() const { return dragging_ || drag_point_ >= 0 || live_; }
     void clusters_panel(int width, int height) {
         const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
         ImDrawList* overlay = ImGui::GetForegroundDrawList();
@@ -1035,7 +1051,7 @@ private:
     int drag_point_ = -1;           // the control point the mouse drags (−1: none), from (drag_from_)
     glm::dvec2 drag_from_{0.0};
     glm::dvec2 drag_applied_{0.0};  // the cursor as the drag's edit last applied it (drag_from_ before any)
-    bool drag_live_ = false;        // the drag's edit is applied (the top undo step)
+    bool live_ = false;             // a live gesture's edit is applied (the top undo step): live_edit
     int axis_lock_ = -1;            // X, Y, Z keys: drags along that axis only
     char style_path_[512] = "style.json";
     Brush brush_;
