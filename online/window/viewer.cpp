@@ -589,8 +589,8 @@ private:
     // dragged or typed in changes the style as it changes (live_edit), one undo step until it is let go.
     void profile_widgets() {
         const std::size_t c = authoring_.selection()[0];
-        const HairStyle& st = *authoring_.style();
-        const GeneralizedCylinder& g = *st.clusters[st.clusters[c].prototype].shape;
+        // Copies: a row's edit replaces the style (a live edit drops the one it replaces), so no reference into it is kept.
+        const std::shared_ptr<const GeneralizedCylinder> g = authoring_.style()->clusters[authoring_.style()->clusters[c].prototype].shape;
         const auto row = [&](const char* name, const Spline1& spline, double unit, float lo, float hi) {
             std::vector<float> v;
             for (const double x : spline.control()) v.push_back(static_cast<float>(x * unit));
@@ -616,10 +616,10 @@ private:
             if (let_go) end_live();
         };
         if (!ImGui::TreeNode("profiles (root to tip)")) return;
-        const float size = static_cast<float>(2.0 * std::max(g.a(0.5), g.b(0.5)) + 1.0);
-        row("a", g.a_spline(), 1.0, 1e-3f, 4.0f * size);
-        row("b", g.b_spline(), 1.0, 1e-3f, 4.0f * size);
-        row("theta_deg", g.theta_spline(), kDegreesPerRadian, -360.0f, 360.0f);
+        const float size = static_cast<float>(2.0 * std::max(g->a(0.5), g->b(0.5)) + 1.0);
+        row("a", g->a_spline(), 1.0, 1e-3f, 4.0f * size);
+        row("b", g->b_spline(), 1.0, 1e-3f, 4.0f * size);
+        row("theta_deg", g->theta_spline(), kDegreesPerRadian, -360.0f, 360.0f);
         ImGui::TreePop();
     }
 
