@@ -275,6 +275,13 @@ std::size_t HairStyle::prototype_count() const {
     return n;
 }
 
+DiskLayout HairStyle::layout_of(std::size_t c) const {
+    DiskLayout l = layout;
+    const int own = clusters.at(clusters.at(c).prototype).layers;
+    if (own > 0) l.layers = own;
+    return l;
+}
+
 // ───────────────────────────── reading ─────────────────────────────
 
 HairStyle style_from_json(const json& doc, const fs::path& file) {
@@ -293,12 +300,20 @@ HairStyle style_from_json(const json& doc, const fs::path& file) {
     style.layout = read_layout(rd, doc);
 
     const json& clusters = rd.array(rd.field(doc, "", "clusters"), "/clusters", 1, kMaxClusters);
-    // Memory check before anything is allocated per cluster: density grids of every cluster.
-    const std::uint64_t per_cluster = static_cast<std::uint64_t>(style.layout.sector_count()) * style.layout.grid_s *
-                                      style.layout.grid_r * sizeof(float);
-    if (per_cluster * clusters.size() > kMaxStyleBytes)
+    // Memory check before anything is allocated per cluster: density grids of every cluster, each of its own layers.
+    std::vector<int> layers(clusters.size(), 0);
+    std::uint64_t all_layers = 0;
+    for (std::size_t i = 0; i < clusters.size(); ++i) {
+        const std::string p = "/clusters/" + std::to_string(i);
+        if (clusters[i].is_object() && clusters[i].contains("layers"))
+            layers[i] = static_cast<int>(rd.integer(clusters[i]["layers"], p + "/layers", 1, kMaxLayers));
+        all_layers += static_cast<std::uint64_t>(layers[i] > 0 ? layers[i] : style.layout.layers);
+    }
+    const std::uint64_t per_layer = static_cast<std::uint64_t>(style.layout.s_t + 1) * style.layout.s_u * style.layout.grid_s *
+                                    style.layout.grid_r * sizeof(float);
+    if (per_layer * all_layers > kMaxStyleBytes)
         rd.fail("/layout", "the density grids of " + std::to_string(clusters.size()) + " clusters would need " +
-                               std::to_string(per_cluster * clusters.size() >> 20) + " MiB (limit " +
+                               std::to_string(per_layer * all_layers >> 20) + " MiB (limit " +
                                std::to_string(kMaxStyleBytes >> 20) + " MiB); lower s_t, s_u, layers or grid");
     std::map<std::string, std::size_t> names;
     for (std::size_t i = 0; i < clusters.size(); ++i) {
@@ -327,7 +342,7 @@ HairStyle style_from_json(const json& doc, const fs::path& file) {
             if (!(norm > 1e-12)) rd.fail(tp + "/rotation", "a rotation quaternion [w, x, y, z] must not be zero");
             cl.transform.rotation = rot / norm;
             cl.transform.translation = rd.vec3(rd.field(t, tp, "translation"), tp + "/translation");
-            for (const char* geometry_key : {"trajectory", "a", "b", "theta_deg", "density"})
+            for (const char* geometry_key : {"trajectory", "a", "b", "theta_deg", "density", "layers"})
                 if (c.contains(geometry_key))
                     rd.fail(p + "/" + geometry_key, "an instance shares its prototype's geometry and density; remove this field");
             continue;
@@ -344,7 +359,10 @@ HairStyle style_from_json(const json& doc, const fs::path& file) {
         } catch (const std::invalid_argument& e) {
             rd.fail(p + "/trajectory", e.what());
         }
-        cl.density = read_density(rd, rd.field(c, p, "density"), p + "/density", style.layout);
+        cl.layers = layers[i];
+        DiskLayout own = style.layout;
+        if (cl.layers > 0) own.layers = cl.layers;
+        cl.density = read_density(rd, rd.field(c, p, "density"), p + "/density", own);
     }
     if (doc.contains("skinning")) {
         const json& sk = doc["skinning"];
@@ -444,6 +462,7 @@ nlohmann::ordered_json style_to_json(const HairStyle& style) {
         j["a"] = list(c.shape->a_spline(), 1.0);
         j["b"] = list(c.shape->b_spline(), 1.0);
         j["theta_deg"] = list(c.shape->theta_spline(), 1.0 / kRadiansPerDegree);
+        if (c.layers > 0) j["layers"] = c.layers;
         const DensitySource& d = *c.density;
         json dj = json::object();
         switch (d.kind) {
@@ -582,9 +601,15 @@ StyleCounts style_counts(const HairStyle& style) {
     c.macro_clusters = macros.size();
     for (const auto& m : macros) c.shared_macro_clusters += m.members.size() > 1 ? 1 : 0;
     c.layers = static_cast<std::size_t>(l.layers);
-    c.hsvs = l.hsv_count() * c.clusters;
-    c.sectors = l.sector_count() * c.clusters;
-    for (const Cluster& cl : style.clusters) {
+    std::size_t all_layers = 0;  // layered shells of every cluster
+    for (std::size_t i = 0; i < style.clusters.size(); ++i) {
+        const DiskLayout own = style.layout_of(i);
+        all_layers += static_cast<std::size_t>(own.layers);
+        c.hsvs += own.hsv_count();
+        c.sectors += own.sector_count();
+    }
+    for (std::size_t i = 0; i < style.clusters.size(); ++i) {
+        const Cluster& cl = style.clusters[i];
         if (cl.instance_of) {
             c.geometry_bytes += sizeof(Similarity);
             continue;
@@ -594,12 +619,12 @@ StyleCounts style_counts(const HairStyle& style) {
         if (cl.density->kind == DensitySource::Kind::Strands)
             for (const StrandRun& r : cl.density->strands) c.stored_strands += r.vu.empty() ? 0 : 1;
         // Prototypes' grids only: instances share them.
-        c.density_bytes += l.sector_count() * static_cast<std::uint64_t>(l.grid_s) * l.grid_r * sizeof(float);
+        c.density_bytes += style.layout_of(i).sector_count() * static_cast<std::uint64_t>(l.grid_s) * l.grid_r * sizeof(float);
     }
     // Layer meshes: position, tangent, normal (3 floats each), texcoord (2), per vertex, plus indices.
     const std::uint64_t verts = static_cast<std::uint64_t>(l.s_t * l.mesh_t + 1) * (l.s_u * l.mesh_u + 1);
     const std::uint64_t tris = static_cast<std::uint64_t>(l.s_t * l.mesh_t) * (l.s_u * l.mesh_u) * 2;
-    c.mesh_bytes = (verts * 11 * sizeof(float) + tris * 3 * sizeof(std::uint32_t)) * l.layers * c.clusters;
+    c.mesh_bytes = (verts * 11 * sizeof(float) + tris * 3 * sizeof(std::uint32_t)) * all_layers;
     return c;
 }
 

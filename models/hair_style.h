@@ -28,6 +28,7 @@
 //         "trajectory": [[x,y,z], …],    ≥ 2 control points of T (B-spline, models/bspline.h)
 //         "a": [..], "b": [..],          ≥ 1 control points each, half-axes, > 0
 //         "theta_deg": [..],             ≥ 1 control points, the ellipse's twist in degrees
+//         "layers": 2,                   optional: this cluster's own L, 1..256 (default the layout's)
 //         "density": one of
 //            {"kind": "uniform", "value": 0.5}            ρ ≥ 0 in every sector
 //            {"kind": "strands", "strand_weight": 1,      member strands' crossings of the s_t+1
@@ -95,6 +96,9 @@ struct Cluster {
     // Shared data: a prototype owns these; instances point at their prototype's.
     std::shared_ptr<const GeneralizedCylinder> shape;
     std::shared_ptr<const DensitySource> density;
+    // A prototype's own number of layered shells (JSON "layers"), or 0: the style layout's. Instances have their
+    // prototype's.
+    int layers = 0;
     // Resolved by HairStyle::resolve(): the prototype at the end of the instance chain, and the
     // composed placement (world = placement(prototype coordinates)); identity for a prototype.
     std::size_t prototype = 0;
@@ -125,6 +129,8 @@ struct HairStyle {
     void resolve(const std::filesystem::path& file = {});
     std::vector<MacroCluster> macro_clusters() const;
     std::size_t prototype_count() const;
+    // The layout of cluster c's shells and sectors: the style's, with its prototype's own layer count when it has one.
+    DiskLayout layout_of(std::size_t c) const;
 };
 
 // Whether the style's source says it is in coif's y-up frame already (kStyleAxesYUp).

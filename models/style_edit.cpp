@@ -121,6 +121,7 @@ std::size_t append_prototype(HairStyle& style, std::size_t from, const std::stri
     c.name = unique_name(style, name);
     c.shape = std::move(shape);
     c.density = std::move(density);
+    c.layers = style.clusters[style.clusters[from].prototype].layers;
     style.clusters.push_back(std::move(c));
     append_rows(style, from, absorption);
     return style.clusters.size() - 1;
@@ -229,7 +230,7 @@ std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::
         const Cluster& from = style.clusters[c];
         const auto placed = from.placement.is_identity() ? from.shape : placed_shape(*from.shape, from.placement);
         out.push_back(append_prototype(style, c, from.name + "_mirror", mirrored_shape(*placed, axis, at),
-                                       mirrored_density(*from.density, style.layout), absorption));
+                                       mirrored_density(*from.density, style.layout_of(c)), absorption));
     }
     style.resolve();
     return out;
@@ -294,6 +295,7 @@ void delete_clusters(HairStyle& style, std::span<const std::size_t> clusters, Ab
                 const Similarity was = cl.transform;
                 cl.shape = placed_shape(*dead.shape, was);
                 cl.density = dead.density;
+                cl.layers = dead.layers;
                 cl.instance_of.reset();
                 cl.transform = {};
                 const Similarity inv = was.inverse();
@@ -358,6 +360,16 @@ void set_profile(HairStyle& style, std::size_t cluster, const std::string& profi
     const GeneralizedCylinder& g = *style.clusters[p].shape;
     style.clusters[p].shape = make_shape(g.trajectory(), profile == "a" ? Spline1(c) : g.a_spline(), profile == "b" ? Spline1(c) : g.b_spline(),
                                          profile == "theta_deg" ? Spline1(c) : g.theta_spline());
+    style.resolve();
+}
+
+void set_layers(HairStyle& style, std::size_t cluster, int layers) {
+    const std::size_t p = edited_prototype(style, cluster);
+    if (layers < 1 || layers > kMaxLayers) throw Error::parameter("layers", "must be 1.." + std::to_string(kMaxLayers));
+    if (style.clusters[p].density->kind == DensitySource::Kind::Grids && layers != style.layout_of(p).layers)
+        throw Error::parameter("layers", style.clusters[p].name +
+                                             "'s density is stored as one grid per sector of its layers; it keeps its layer count");
+    style.clusters[p].layers = layers == style.layout.layers ? 0 : layers;
     style.resolve();
 }
 

@@ -61,6 +61,11 @@ void move_control_point(HairStyle& style, std::size_t cluster, std::size_t point
 // instance's edits its prototype's. Throws coif::Error::parameter for an unknown profile, no value, more than
 // kMaxControlPoints, or values that are not finite (or not positive radii).
 void set_profile(HairStyle& style, std::size_t cluster, const std::string& profile, std::span<const double> values);
+// A cluster's own number of layered shells (an instance's: its prototype's), 1..kMaxLayers; the layout's count makes it
+// follow the layout again. Its sectors are of its own layout from then on (HairStyle::layout_of); a density stored as
+// member strands or uniform serves any count. Throws coif::Error::parameter outside the range, or for a density stored
+// per sector (kind grids), which is of its layer count.
+void set_layers(HairStyle& style, std::size_t cluster, int layers);
 
 // The motion of `coif style transform` and the viewer's: turn by `rotate_deg` (about x, then y, then z), scale by
 // `scale`, both about `pivot` (null: the centre of `clusters`' roots), then translate. Throws coif::Error::parameter

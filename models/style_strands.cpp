@@ -34,8 +34,9 @@ struct PlaneDensity {
     double count = 0;       // strands crossing the plane
 };
 
-std::vector<PlaneDensity> plane_densities(const HairStyle& style, const Cluster& proto) {
-    const DiskLayout& l = style.layout;
+std::vector<PlaneDensity> plane_densities(const HairStyle& style, std::size_t prototype) {
+    const Cluster& proto = style.clusters[prototype];
+    const DiskLayout l = style.layout_of(prototype);
     const std::vector<SectorDensity> grids = cluster_sector_densities(*proto.shape, l, *proto.density);
     std::vector<PlaneDensity> out(static_cast<std::size_t>(l.s_t) + 1);
     for (int i = 0; i <= l.s_t; ++i) {
@@ -107,7 +108,7 @@ const ClusterStrandSampler::Planes& ClusterStrandSampler::planes(std::size_t pro
     std::unique_ptr<Planes>& p = planes_.at(prototype);
     if (!p) {
         p = std::make_unique<Planes>();
-        p->planes = plane_densities(style_, style_.clusters[prototype]);
+        p->planes = plane_densities(style_, prototype);
         double n = 0;
         for (const PlaneDensity& d : p->planes) n = std::max(n, d.count);
         p->count = static_cast<std::size_t>(std::round(n));

@@ -392,11 +392,13 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
     }
     const GLint layer_loc = floor_only ? -1 : prog.uniform("u_layer");
+    const GLint layers_loc = floor_only ? -1 : prog.uniform("u_layers");
     const GLint rho_loc = floor_only || !s.own_cluster_shadow ? -1 : prog.uniform("u_layer_rho");
+    DiskLayout own = L;  // the drawn cluster's prototype's layout: its own layer count
     const auto draw_layer = [&](std::size_t c, int j) {
         const MeshRange& r = shells.meshes[shells.cluster_proto[c]][static_cast<std::size_t>(j)];
         if (layer_loc >= 0) glUniform1i(layer_loc, j);
-        if (rho_loc >= 0) glUniform1f(rho_loc, static_cast<float>(L.layer_v(j + 1)));  // the layer mesh's own surface
+        if (rho_loc >= 0) glUniform1f(rho_loc, static_cast<float>(own.layer_v(j + 1)));  // the layer mesh's own surface
         glDrawElementsInstancedBaseVertexBaseInstance(
             GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
@@ -406,10 +408,15 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     for (std::size_t c : order) {
         if (!visible[c]) continue;
         ++drawn_;
+        const int layers = static_cast<int>(shells.meshes[shells.cluster_proto[c]].size());
+        if (layers != own.layers) {
+            own.layers = layers;
+            if (layers_loc >= 0) glUniform1i(layers_loc, layers);
+        }
         glCullFace(GL_FRONT);  // back faces (far side, seen through the core): outer → inner
-        for (int j = L.layers - 1; j >= 0; --j) draw_layer(c, j);
+        for (int j = layers - 1; j >= 0; --j) draw_layer(c, j);
         glCullFace(GL_BACK);   // front faces: inner → outer
-        for (int j = 0; j < L.layers; ++j) draw_layer(c, j);
+        for (int j = 0; j < layers; ++j) draw_layer(c, j);
     }
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);

@@ -164,13 +164,14 @@ void add_style_edits(CLI::App& root) {
         std::vector<double> a, b, theta;
         std::optional<std::size_t> point;
         std::vector<double> move;
+        std::optional<int> layers;
     };
     auto so = std::make_shared<SetOptions>();
     CLI::App* set = style->add_subcommand(
         "set",
         "Edit one cluster's shape: its half-axis profiles A and B and its twist θ (control points from root to tip),\n"
-        "or move one control point of its trajectory. An instance's edit goes to its prototype, so every instance of\n"
-        "that prototype changes with it.");
+        "its own number of layered shells, or move one control point of its trajectory. An instance's edit goes to its\n"
+        "prototype, so every instance of that prototype changes with it.");
     add_io(set, so->io, false);
     set->add_option("--cluster", so->cluster, "The cluster, by name")->required();
     set->add_option("--a", so->a, "Half-axis A's control points (> 0, the style's units)");
@@ -178,19 +179,23 @@ void add_style_edits(CLI::App& root) {
     set->add_option("--theta-deg", so->theta, "The twist θ's control points, degrees");
     set->add_option("--point", so->point, "A trajectory control point's index (0: the root)");
     set->add_option("--move", so->move, "Move that point by X Y Z (the style's units)")->expected(3);
+    set->add_option("--layers", so->layers, "Its own number of layered shells (the layout's: follow the layout again)")
+        ->check(CLI::Range(1, coif::kMaxLayers));
     coif::cli::examples(set, "  coif style set @default --cluster c3 --a 1.2 1.0 0.8 -o wider.json\n"
-                             "  coif style set @default --cluster c3 --point 2 --move 0 0 1 -o bent.json");
+                             "  coif style set @default --cluster c3 --point 2 --move 0 0 1 -o bent.json\n"
+                             "  coif style set @default --cluster c3 --layers 2 -o thin.json");
     set->callback([so] {
         if (so->point.has_value() != (so->move.size() == 3))
             throw coif::Error::parameter("--point", "--point and --move go together");
-        if (so->a.empty() && so->b.empty() && so->theta.empty() && !so->point)
-            throw coif::Error::parameter("set", "nothing to set: give --a, --b, --theta-deg or --point with --move");
+        if (so->a.empty() && so->b.empty() && so->theta.empty() && !so->point && !so->layers)
+            throw coif::Error::parameter("set", "nothing to set: give --a, --b, --theta-deg, --layers or --point with --move");
         Loaded l = load(so->io);
         const std::size_t c = coif::find_cluster(l.style, so->cluster);
         if (!so->a.empty()) coif::set_profile(l.style, c, "a", so->a);
         if (!so->b.empty()) coif::set_profile(l.style, c, "b", so->b);
         if (!so->theta.empty()) coif::set_profile(l.style, c, "theta_deg", so->theta);
         if (so->point) coif::move_control_point(l.style, c, *so->point, {so->move[0], so->move[1], so->move[2]});
+        if (so->layers) coif::set_layers(l.style, c, *so->layers);
         save(so->io, l, "edited " + so->cluster);
     });
 }

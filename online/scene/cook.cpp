@@ -332,7 +332,6 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
                                CookCache::State* cache) {
     if (style.clusters.empty()) throw Error(style.name, "clusters", "the style has no clusters");
     m.layout = style.layout;
-    const DiskLayout& L = m.layout;
     m.prototypes.clear();
     std::vector<ShellVertex>& vertices = m.vertices.vector();
     std::vector<std::uint32_t>& indices = m.indices.vector();
@@ -350,12 +349,16 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
         m.cluster_proto[c] = slot_of[p];
     }
     if (cache) cache->serial_of.assign(style.clusters.size(), 0);
-    const std::size_t per_proto = L.sector_count();
-    const double lambda = L.gaussian_width;
-    m.sectors.assign(m.prototypes.size() * per_proto, ShellSector{});
+    const double lambda = m.layout.gaussian_width;
+    // Each prototype's sectors, of its own layout (HairStyle::layout_of), one after another.
+    std::vector<std::size_t> base(m.prototypes.size() + 1, 0);
+    for (std::size_t p = 0; p < m.prototypes.size(); ++p) base[p + 1] = base[p] + style.layout_of(m.prototypes[p]).sector_count();
+    m.sectors.assign(base.back(), ShellSector{});
     m.meshes.assign(m.prototypes.size(), {});
     for (std::size_t p = 0; p < m.prototypes.size(); ++p) {
         const Cluster& proto = style.clusters[m.prototypes[p]];
+        const DiskLayout L = style.layout_of(m.prototypes[p]);
+        const std::size_t per_proto = L.sector_count(), first_sector = base[p];
         const GeneralizedCylinder& shape = *proto.shape;
         std::string key;
         const std::size_t first_vertex = vertices.size(), first_index = indices.size();
@@ -372,7 +375,7 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
                 }
                 vertices.insert(vertices.end(), e.vertices.begin(), e.vertices.end());
                 indices.insert(indices.end(), e.indices.begin(), e.indices.end());
-                std::copy(e.sectors.begin(), e.sectors.end(), m.sectors.begin() + static_cast<std::ptrdiff_t>(p * per_proto));
+                std::copy(e.sectors.begin(), e.sectors.end(), m.sectors.begin() + static_cast<std::ptrdiff_t>(first_sector));
                 cache->serial_of[m.prototypes[p]] = e.serial;
                 cache->prototypes_now.insert_or_assign(std::move(key), it->second);
                 continue;
@@ -404,17 +407,17 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
         const std::vector<SectorMatch> matches = satf.match_all(rows);
         std::vector<float> sector_alpha(per_proto, 0.0f);
         for (std::size_t s = 0; s < per_proto; ++s)
-            m.sectors[p * per_proto + s] = shell_sector(matches[s], mean_alpha, &sector_alpha[s]);
+            m.sectors[first_sector + s] = shell_sector(matches[s], mean_alpha, &sector_alpha[s]);
         for (int i = 0; i <= L.s_t; ++i)
             for (int k = 0; k < L.s_u; ++k) {
                 float outer = 0.0f;  // Σ ᾱ of the layers outside layer j (004 eq. 12's χ(k))
                 for (int j = L.layers - 1; j >= 0; --j) {
                     const std::size_t s = L.sector_index(i, j, k);
-                    m.sectors[p * per_proto + s].shadow.x = outer;
+                    m.sectors[first_sector + s].shadow.x = outer;
                     outer += sector_alpha[s];
                 }
                 for (int j = 0; j < L.layers; ++j)  // Σ ᾱ of every layer: one radius (shaders/lighting/own_cluster.glsl)
-                    m.sectors[p * per_proto + L.sector_index(i, j, k)].shadow.y = outer;
+                    m.sectors[first_sector + L.sector_index(i, j, k)].shadow.y = outer;
             }
         if (cache) {
             auto e = std::make_shared<CookCache::State::Prototype>();
@@ -426,8 +429,8 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
                 r.base_vertex -= static_cast<std::int32_t>(first_vertex);
                 e->meshes.push_back(r);
             }
-            e->sectors.assign(m.sectors.begin() + static_cast<std::ptrdiff_t>(p * per_proto),
-                              m.sectors.begin() + static_cast<std::ptrdiff_t>((p + 1) * per_proto));
+            e->sectors.assign(m.sectors.begin() + static_cast<std::ptrdiff_t>(first_sector),
+                              m.sectors.begin() + static_cast<std::ptrdiff_t>(first_sector + per_proto));
             cache->serial_of[m.prototypes[p]] = e->serial;
             cache->prototypes_now.insert_or_assign(std::move(key), std::move(e));
             ++cache->now.prototypes_made;

@@ -1,5 +1,7 @@
 #include "online/shells/hair_asset.h"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -80,6 +82,13 @@ nlohmann::json meta_json(const CookedShells& c) {
     j["layout"] = {{"core_radius", L.core_radius}, {"layers", L.layers}, {"s_t", L.s_t}, {"s_u", L.s_u},
                    {"grid_s", L.grid_s}, {"grid_r", L.grid_r}, {"mesh_t", L.mesh_t}, {"mesh_u", L.mesh_u},
                    {"gaussian_width", L.gaussian_width}};
+    // Prototypes of their own layer count (HairStyle::layout_of): every prototype's, in slot order; absent when all have
+    // the layout's.
+    if (std::any_of(p.meshes.begin(), p.meshes.end(), [&](const auto& m) { return m.size() != static_cast<std::size_t>(L.layers); })) {
+        nlohmann::json layers = nlohmann::json::array();
+        for (const auto& m : p.meshes) layers.push_back(m.size());
+        j["prototype_layers"] = std::move(layers);
+    }
     j["lighting_rows"] = p.lighting_rows;
     j["bounds"] = {vec_json(p.bounds_min), vec_json(p.bounds_max)};
     j["frame"] = {vec_json(c.frame_min), vec_json(c.frame_max)};
@@ -308,6 +317,16 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     L.gaussian_width = double_of(lj, "gaussian_width", "META/layout", r);
     if (!(L.core_radius >= 0 && L.core_radius < 1)) r.fail("META/layout/core_radius", "must be in [0, 1)");
     if (L.sector_count() > kMaxElements) r.fail("META/layout", "absurd sector count");
+    std::vector<int> proto_layers;  // empty: every prototype has the layout's
+    if (meta.contains("prototype_layers")) {
+        const nlohmann::json& pl = meta["prototype_layers"];
+        if (!pl.is_array() || pl.empty() || pl.size() > kMaxElements) r.fail("META/prototype_layers", "expected a layer count per prototype");
+        for (std::size_t q = 0; q < pl.size(); ++q) {
+            if (!pl[q].is_number_integer() || pl[q].get<long long>() < 1 || pl[q].get<long long>() > 64)
+                r.fail("META/prototype_layers/" + std::to_string(q), "must be a whole number 1..64");
+            proto_layers.push_back(pl[q].get<int>());
+        }
+    }
     p.lighting_rows = int_in(meta, "lighting_rows", "META", 2, 1 << 16, r);
     const auto box = [&](const char* key, glm::vec3& lo, glm::vec3& hi) {
         if (!meta.contains(key) || !meta[key].is_array() || meta[key].size() != 2)
@@ -393,15 +412,20 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     std::vector<BoneInfluence> influences = r.section<BoneInfluence>("SKIN");
     if (r.at != data.size()) r.fail(r.at, "unexpected bytes after the last section");
 
-    const std::size_t P = protos.size(), C = cluster_proto.size(), per_proto = L.sector_count();
+    const std::size_t P = protos.size(), C = cluster_proto.size();
     if (P == 0 || C == 0) r.fail("PROT", "the asset has no clusters");
     p.prototypes.assign(protos.begin(), protos.end());
-    if (meshes.size() != P * static_cast<std::size_t>(L.layers)) r.fail("MESH", "expected prototypes × layers mesh ranges");
+    if (proto_layers.empty()) proto_layers.assign(P, L.layers);
+    if (proto_layers.size() != P) r.fail("META/prototype_layers", "expected one layer count per prototype");
+    std::size_t all_layers = 0;
+    for (const int n : proto_layers) all_layers += static_cast<std::size_t>(n);
+    if (meshes.size() != all_layers) r.fail("MESH", "expected a mesh range per prototype and layer");
     p.meshes.assign(P, {});
+    std::size_t next = 0;
     for (std::size_t q = 0; q < P; ++q) {
-        for (int j = 0; j < L.layers; ++j) {
-            const MeshRange& m = meshes[q * L.layers + j];
-            const std::string place = "MESH " + std::to_string(q * L.layers + j);
+        for (int j = 0; j < proto_layers[q]; ++j, ++next) {
+            const MeshRange& m = meshes[next];
+            const std::string place = "MESH " + std::to_string(next);
             if (m.count < 0 || m.count % 3 || m.base_vertex < 0 || m.vertex_count < 1 ||
                 std::uint64_t(m.first) + std::uint64_t(m.count) > p.indices.size() ||
                 std::uint64_t(m.base_vertex) + std::uint64_t(m.vertex_count) > p.vertices.size())
@@ -413,7 +437,7 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
             p.triangles += static_cast<std::size_t>(m.count) / 3;
         }
     }
-    if (p.sectors.size() != P * per_proto) r.fail("SECT", "expected prototypes × the layout's sectors");
+    if (p.sectors.size() != p.sector_bases().back()) r.fail("SECT", "expected each prototype's layout's sectors");
     const std::size_t atlas_records = a.mean_alpha.size();
     if (a.mean_a0.size() != atlas_records) r.fail("MA0_", "one mean per atlas record expected");
     const std::uint64_t tiles_needed = atlas_records * kAtlasParts;
@@ -433,9 +457,10 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     p.cluster_ids.resize(C);
     std::iota(p.cluster_ids.begin(), p.cluster_ids.end(), 0u);
     if (p.instances.size() != C || p.cluster_centre.size() != C) r.fail("INST", "one instance and centre per cluster expected");
+    const std::vector<std::size_t> sector_base = p.sector_bases();
     for (std::size_t i = 0; i < C; ++i) {
         const ShellInstance& in = p.instances[i];
-        if (!finite(in.model) || in.info.x != p.cluster_proto[i] * per_proto || in.info.y != i ||
+        if (!finite(in.model) || in.info.x != sector_base[p.cluster_proto[i]] || in.info.y != i ||
             !finite(p.cluster_centre[i]))
             r.fail("INST " + std::to_string(i), "does not match its cluster");
     }

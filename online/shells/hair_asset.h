@@ -15,7 +15,8 @@
 //     META  1 byte   JSON object, UTF-8: "format": "coif-hair-asset"; "style" (its name); "database" (the HRIR
 //                    database cooked against, for messages) and "database_records" (its record count);
 //                    "coif_version"; "layout" (models/generalized_disk.h DiskLayout: core_radius, layers, s_t, s_u,
-//                    grid_s, grid_r, mesh_t, mesh_u, gaussian_width); "lighting_rows"; "bounds" and
+//                    grid_s, grid_r, mesh_t, mesh_u, gaussian_width); "prototype_layers" (each prototype's layer
+//                    count, in order, 1..64; only when one differs from the layout's); "lighting_rows"; "bounds" and
 //                    "frame" ([min xyz, max xyz]: the placed outer layers, and the box a camera frames, that of
 //                    the style's strands turned y-up); "tangent_spread" (RMS fibre tilt, radians);
 //                    "auto_fiber_radius"; "shadow_strands"; "atlas" (width, height, tiles_per_row, views,
@@ -26,9 +27,9 @@
 //                    skeleton's bone names, [] when the style has no bone weights).
 //     VERT 56 bytes  ShellVertex (online/shells/prepared_shells.h): the prototypes' layer meshes' vertices
 //     INDX  4        u32 indices, per mesh relative to its base vertex
-//     MESH 16        MeshRange (first, count, base_vertex, vertex_count), prototype-major, `layers` per prototype
+//     MESH 16        MeshRange (first, count, base_vertex, vertex_count), prototype-major, its layer count per prototype
 //     PROT  4        u32 per prototype: the style's cluster index it was made from
-//     SECT 48        ShellSector: per prototype × layout.sector_count(): record ids (into the atlas), weights, shadow sums
+//     SECT 48        ShellSector: per prototype, its layout's sector_count(): record ids (into the atlas), weights, shadow sums
 //     CPRO  4        u32 per cluster: its prototype
 //     INST 80        ShellInstance per cluster: model matrix, (first sector, cluster index, 0, 0)
 //     CCEN 12        vec3 per cluster: the axis's centre, world

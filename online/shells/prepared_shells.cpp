@@ -88,11 +88,23 @@ std::vector<glm::vec3> cluster_roots(const HairStyle& style, const glm::mat3& or
     return roots;
 }
 
+DiskLayout PreparedShells::layout_of_slot(std::size_t slot) const {
+    DiskLayout l = layout;
+    l.layers = static_cast<int>(meshes.at(slot).size());
+    return l;
+}
+
+std::vector<std::size_t> PreparedShells::sector_bases() const {
+    std::vector<std::size_t> base(meshes.size() + 1, 0);
+    for (std::size_t p = 0; p < meshes.size(); ++p) base[p + 1] = base[p] + layout_of_slot(p).sector_count();
+    return base;
+}
+
 void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& orientation, int lighting_rows_per_hsv) {
     if (lighting_rows_per_hsv < 0 || lighting_rows_per_hsv > kMaxMeshSubdivision)
         throw Error::parameter("lighting rows per HSV", "must be 0.." + std::to_string(kMaxMeshSubdivision));
     const DiskLayout& L = m.layout;
-    const std::size_t per_proto = L.sector_count();
+    const std::vector<std::size_t> base = m.sector_bases();
     m.lighting_rows = L.s_t * (lighting_rows_per_hsv > 0 ? lighting_rows_per_hsv : L.mesh_t) + 1;
     m.instances.clear();
     m.samples.clear();
@@ -105,7 +117,7 @@ void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& 
         const std::size_t p = m.cluster_proto.at(c);
         const glm::mat4 model = to_mat4(orientation, cl.placement);
         const glm::mat3 rot(model);
-        m.instances.push_back({model, glm::uvec4(static_cast<std::uint32_t>(p * per_proto), static_cast<std::uint32_t>(c), 0, 0)});
+        m.instances.push_back({model, glm::uvec4(static_cast<std::uint32_t>(base[p]), static_cast<std::uint32_t>(c), 0, 0)});
         m.cluster_ids.push_back(static_cast<std::uint32_t>(c));
         const GeneralizedCylinder& shape = *cl.shape;
         m.cluster_centre.push_back(glm::vec3(model * glm::vec4(glm::vec3(shape.position(0.5)), 1.0f)));

@@ -69,8 +69,8 @@ struct PreparedShells {
     std::vector<std::size_t> prototypes;           // slot → the style's cluster index of the prototype
     Bulk<ShellVertex> vertices;
     Bulk<std::uint32_t> indices;
-    std::vector<std::vector<MeshRange>> meshes;    // [slot][layer]
-    std::vector<ShellSector> sectors;              // [slot · layout.sector_count() + sector]
+    std::vector<std::vector<MeshRange>> meshes;    // [slot][layer]: a prototype's own layer count (HairStyle::layout_of)
+    std::vector<ShellSector> sectors;              // [sector_base(slot) + its layout's sector index]
     std::size_t triangles = 0;
     // Clusters, in style order.
     std::vector<std::size_t> cluster_proto;        // cluster → slot
@@ -82,6 +82,10 @@ struct PreparedShells {
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // the placed outer layers (world, oriented)
 
     std::size_t clusters() const { return cluster_proto.size(); }
+    // A prototype's layout: `layout` with the slot's own layer count (its layer meshes).
+    DiskLayout layout_of_slot(std::size_t slot) const;
+    // Where each slot's sectors begin in `sectors`, and after the last the count they need (slots + 1 entries).
+    std::vector<std::size_t> sector_bases() const;
 };
 
 // The rotation that turns the style's mean root→tip direction (from its clusters' axes) to −y

@@ -265,6 +265,13 @@ private:
                     sync();
                     break;
                 }
+                case K::layers: {
+                    const std::vector<std::size_t> sel = selected();
+                    if (sel.size() != 1) throw Error::parameter("layers", "select one cluster to set its layer count");
+                    authoring_.edit_cluster(sel[0], [&](HairStyle& st) { set_layers(st, sel[0], a.point); });
+                    sync();
+                    break;
+                }
                 case K::save_style: save_style(a.path); break;
             }
         } catch (const Error& e) {
@@ -620,6 +627,18 @@ private:
         row("a", g->a_spline(), 1.0, 1e-3f, 4.0f * size);
         row("b", g->b_spline(), 1.0, 1e-3f, 4.0f * size);
         row("theta_deg", g->theta_spline(), kDegreesPerRadian, -360.0f, 360.0f);
+        // Its own number of layered shells (its prototype's), an edit when the field is let go.
+        int layers = authoring_.style()->layout_of(c).layers;
+        ImGui::InputInt("layers", &layers, 1, 1);
+        if (ImGui::IsItemDeactivatedAfterEdit() || (ImGui::IsItemEdited() && !ImGui::IsItemActive())) {
+            try {
+                authoring_.edit_cluster(c, [&](HairStyle& s2) { set_layers(s2, c, std::clamp(layers, 1, kMaxLayers)); });
+                sync();
+                message_.clear();
+            } catch (const Error& e) {
+                message_ = e.what();
+            }
+        }
         ImGui::TreePop();
     }
 

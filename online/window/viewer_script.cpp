@@ -7,6 +7,7 @@
 #include "models/absorption_map.h"
 #include "models/core/error.h"
 #include "models/core/image.h"
+#include "models/generalized_disk.h"
 #include "offline/srbf_lights.h"
 #include "online/shells/shell_settings.h"
 
@@ -222,6 +223,10 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
                 throw Error(file, at, "unknown profile '" + act.profile + "' (a, b, theta_deg)");
             const bool radius = act.profile != "theta_deg";
             for (const auto& x : v.begin().value()) act.profile_values.push_back(number(x, file, at + "/" + act.profile, radius ? 1e-9 : -36000, radius ? 1e6 : 36000));
+        } else if (key == "layers") {
+            act.kind = K::layers;
+            act.point = static_cast<int>(number(v, file, at, 1, kMaxLayers));
+            if (v.get<double>() != act.point) throw Error(file, at, "expected a whole number");
         } else if (key == "save_style") {
             act.kind = K::save_style;
             if (!v.is_string() || v.get<std::string>().empty()) throw Error(file, at, "expected a file name");
@@ -231,7 +236,7 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
             throw Error(file, place, "unknown action '" + key +
                                          "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo, "
                                          "save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, delete, "
-                                         "profile, save_style, symmetry)");
+                                         "profile, layers, save_style, symmetry)");
         }
         actions.push_back(std::move(act));
     }

@@ -40,6 +40,7 @@
 //   {"mirror": {"axis": "x", "at": X}}      mirror images of the selection (at: default the middle of the roots)
 //   {"delete": true}                        the selection removed
 //   {"profile": {"a"|"b"|"theta_deg": [V, …]}}   the selected cluster's profile's control points
+//   {"layers": N}                           the selected cluster's own number of layered shells (its prototype's)
 //   {"symmetry": true|false}                symmetry mode: a drag, profile edit or transform also makes each mirror
 //                                           partner across the head's plane (x = the middle of the roots) not selected
 //                                           the mirror image of its edited cluster
@@ -57,7 +58,7 @@ struct ViewerAction {
     enum class Kind {
         orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo,
         save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, remove,
-        profile, save_style, symmetry
+        profile, save_style, symmetry, layers
     };
     Kind kind = Kind::frames;
     double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), rotate_lights (x), frames (x)
@@ -71,7 +72,7 @@ struct ViewerAction {
     // Cluster authoring.
     std::vector<std::string> names;          // select
     double to_x = 0, to_y = 0;               // drag_point: from (x, y) to (to_x, to_y)
-    int point = 0;                           // drag_point
+    int point = 0;                           // drag_point; layers: the count
     int steps = 1;                           // drag_point
     int axis = -1;                           // drag_point (−1: the view plane), mirror: 0, 1, 2 = x, y, z
     std::optional<double> at;                // mirror's plane

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "models/core/error.h"
@@ -54,6 +55,48 @@ Similarity turn() {
 
 // Rounding only: the shapes' tables are fourth-order accurate in double precision (sizes ~10).
 constexpr double kExact = 1e-6;
+
+TEST(StyleEdit, AClustersOwnLayerCountIsItsPrototypesAndTravelsWithItsEdits) {
+    HairStyle s = style();
+    // "plain" (strand density) takes 3 layered shells; its sectors are of its own layout; the file keeps the count.
+    set_layers(s, 2, 3);
+    EXPECT_EQ(s.layout_of(2).layers, 3);
+    EXPECT_EQ(s.layout_of(0).layers, 2);
+    EXPECT_EQ(s.layout_of(1).layers, 2);  // an instance has its prototype's
+    EXPECT_EQ(style_counts(s).sectors, 3u * 4u * (2u + 2u + 3u));
+    const HairStyle back = parse_style(style_text(s), "<again>");
+    EXPECT_EQ(back.layout_of(2).layers, 3);
+    EXPECT_EQ(style_text(back), style_text(s));
+    // A copy, a mirror image and an instance left behind by a delete keep their prototype's count.
+    const std::vector<std::size_t> plain{2};
+    EXPECT_EQ(s.layout_of(duplicate_clusters(s, plain, false, Similarity{})[0]).layers, 3);
+    EXPECT_EQ(s.layout_of(mirror_clusters(s, plain, 0, 0.0)[0]).layers, 3);
+    HairStyle d = style();
+    EXPECT_THROW(set_layers(d, 1, 3), Error);  // the instance's edit is its prototype's: "curl" has grids
+    EXPECT_EQ(d.layout_of(0).layers, 2);
+    // The layout's count: it follows the layout again (not written).
+    set_layers(s, 2, 2);
+    EXPECT_EQ(s.clusters[2].layers, 0);
+    // Refused: out of range; a density stored per sector (its grids are of its count).
+    EXPECT_THROW(set_layers(s, 2, 0), Error);
+    EXPECT_THROW(set_layers(s, 2, kMaxLayers + 1), Error);
+    try {
+        set_layers(s, 0, 3);
+        ADD_FAILURE() << "a grid density's layer count changed";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("one grid per sector"), std::string::npos) << e.what();
+    }
+    // In the file: an instance may not have a count of its own, and the count is 1..kMaxLayers.
+    const auto with = [](std::size_t cluster, int layers) {
+        nlohmann::json j = nlohmann::json::parse(style_text(style()));
+        j["clusters"][cluster]["layers"] = layers;
+        return parse_style(j.dump(), "<edited>");
+    };
+    EXPECT_THROW(with(1, 3), Error);
+    EXPECT_THROW(with(2, 0), Error);
+    EXPECT_THROW(with(2, kMaxLayers + 1), Error);
+    EXPECT_EQ(with(2, 5).layout_of(2).layers, 5);
+}
 
 TEST(StyleEdit, TransformMovesAPrototypeOrAnInstanceByTheSimilarityAndNothingElse) {
     const HairStyle before = style();

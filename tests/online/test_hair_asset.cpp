@@ -159,6 +159,63 @@ TEST(HairAsset, ACookThatKeepsWhatAnEditDidNotChangeIsTheSameCook) {
     EXPECT_EQ(t.clusters, 1u);
 }
 
+TEST(HairAsset, AClusterOfItsOwnLayerCountDrawsAsAStyleOfThatLayoutDoes) {
+    // The left cluster with 2 layered shells, the right with the layout's 4 (HairStyle::layout_of): each prototype's
+    // meshes and sectors are of its own layout, the asset keeps the counts, and each half of the picture is its cluster
+    // as a style whose layout has its count draws it (without the shadows between clusters, which count both
+    // clusters' strands; with them the halves are the mixed style's own).
+    auto context = gl::Context::headless();
+    HairStyle mixed = test::two_cluster_style();
+    set_layers(mixed, 0, 2);
+    ASSERT_EQ(mixed.layout_of(0).layers, 2);
+    ASSERT_EQ(mixed.layout_of(1).layers, 4);
+    HairStyle two = test::two_cluster_style();
+    two.layout.layers = 2;
+    const HairStyle four = test::two_cluster_style();
+    const CookedShells m = cook_shells(mixed, test_index(), glm::mat3(1.0f));
+    ASSERT_EQ(m.shells.meshes.size(), 2u);
+    EXPECT_EQ(m.shells.meshes[0].size(), 2u);
+    EXPECT_EQ(m.shells.meshes[1].size(), 4u);
+    EXPECT_EQ(m.shells.sectors.size(), 5u * 8u * (2u + 4u));  // (s_t + 1) · s_u per layer
+    EXPECT_EQ(m.shells.instances[1].info.x, 5u * 8u * 2u);     // the right cluster's sectors follow the left's
+    const std::vector<std::byte> bytes = hair_asset_bytes(m);
+    const CookedShells read = parse_hair_asset(bytes, "hair.coif");
+    EXPECT_EQ(hair_asset_bytes(read), bytes);
+    EXPECT_EQ(read.shells.meshes[0].size(), 2u);
+    const CookedShells c4 = cook_shells(four, test_index(), glm::mat3(1.0f));
+    const Camera camera = Camera::orbit(c4.shells.bounds_min, c4.shells.bounds_max, 0.0f, 0.1f, 96, 64);
+    const auto image = [&](CookedShells c) {
+        gl::ShellRenderer r(std::move(c));
+        r.set_lights(two_lights());
+        gl::ShellSettings s;
+        s.samples = 1;
+        s.shadows = false;
+        return r.render(camera, s);
+    };
+    const Image a = image(read), b = image(cook_shells(two, test_index(), glm::mat3(1.0f))), d = image(c4);
+    // Over each half: the same pixels; and some hair there, differing between the two layouts, or the test shows nothing.
+    const auto half = [&](const Image& x, const Image& y, bool left, double* hair = nullptr) {
+        double diff = 0, sum = 0;
+        for (int py = 0; py < x.height; ++py)
+            for (int px = left ? 0 : x.width / 2; px < (left ? x.width / 2 : x.width); ++px)
+                for (int ch = 0; ch < 3; ++ch) {
+                    diff += std::abs(x.at(px, py)[ch] - y.at(px, py)[ch]);
+                    sum += x.at(px, py)[ch];
+                }
+        if (hair) *hair = sum;
+        return diff;
+    };
+    // Within 1e-6 of the half's radiance: what the whole style shares, the auto fibre radius of its strands' bounds,
+    // differs by a rounding between the mixed style and the uniform ones (measured: 0 on the left, 1e-6 on the right).
+    double left_hair = 0, right_hair = 0;
+    const double left_diff = half(a, b, true, &left_hair), right_diff = half(a, d, false, &right_hair);
+    EXPECT_LE(left_diff, 1e-6 * left_hair);
+    EXPECT_LE(right_diff, 1e-6 * right_hair);
+    EXPECT_GT(left_hair, 0.0);
+    EXPECT_GT(right_hair, 0.0);
+    EXPECT_GT(half(b, d, true), 0.0) << "2 and 4 layers must draw differently";
+}
+
 TEST(HairAsset, RefusesTruncatedCorruptAndOtherVersionFiles) {
     const std::vector<std::byte> good = hair_asset_bytes(cooked());
     EXPECT_EQ(refusal(good), "accepted");

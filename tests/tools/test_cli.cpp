@@ -253,10 +253,11 @@ TEST(Cli, StyleEditsMoveCopyMirrorAndDeleteClustersWithTheirPaintedRows) {
     EXPECT_THAT(r.err, HasSubstr("mirrored 2 clusters across x = 0"));
     r = run_coif("style transform " + p("mirrored.json") + " --clusters c7_mirror --rotate-deg 0 20 0 --scale 1.1 -o " + p("moved.json"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    r = run_coif("style set " + p("moved.json") + " --cluster c10 --a 1.2 1 0.8 --point 1 --move 0 0 2 -o " + p("set.json"));
+    r = run_coif("style set " + p("moved.json") + " --cluster c10 --a 1.2 1 0.8 --point 1 --move 0 0 2 --layers 2 -o " + p("set.json"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "set.json"))["clusters"][8]["a"].size(), 3u);
-    // The result draws.
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "set.json"))["clusters"][8]["layers"], 2);
+    // The result draws (c10 with 2 layered shells, the rest with 4).
     r = run_coif("render --style " + p("set.json") + " --width 48 --height 32 --samples 1 -o " + p("set.png"));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     // Bad input: a name the style lacks, a map without its output, nothing to set, a bad scale. No file written.

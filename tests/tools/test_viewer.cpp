@@ -201,14 +201,16 @@ TEST(Viewer, APaintedStrokeDarkensWhereItIsAndUndoRedoAndSaveAreExact) {
 TEST(Viewer, ADragFollowsTheCursorAsOneUndoStep) {
     // A drag applies its edit at every step of the cursor (each undoing the last: what the mouse does once a frame, the
     // edit cooked keeping what it did not change) and is one undo step: 4 steps end where one step to the same place
-    // does, and one undo gives back the style before the drag, byte for byte.
+    // does, and one undo gives back the style before the drag, byte for byte. Then the cluster's layer count is set and
+    // undone.
     REQUIRE_WINDOW();
     const fs::path dir = test::scratch_dir("viewer-live-drag");
     const std::string d = dir.string() + "/";
     write_text(dir / "script.json", R"([{"panel": false}, {"pick": [120, 60]}, {"save_style": ")" + d + R"(before.json"},
         {"drag_point": {"point": 2, "from": [120, 60], "to": [160, 40], "steps": 4}}, {"save_style": ")" + d + R"(live.json"},
         {"undo": true}, {"save_style": ")" + d + R"(undone.json"},
-        {"drag_point": {"point": 2, "from": [120, 60], "to": [160, 40]}}, {"save_style": ")" + d + R"(once.json"}])");
+        {"drag_point": {"point": 2, "from": [120, 60], "to": [160, 40]}}, {"save_style": ")" + d + R"(once.json"},
+        {"layers": 2}, {"save_style": ")" + d + R"(layers.json"}, {"undo": true}, {"save_style": ")" + d + R"(unlayered.json"}])");
     const auto r = run_coif("view --width 240 --height 160 --samples 1 --script '" + d + "script.json'", kWindow);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto text = [](const fs::path& p) {
@@ -218,14 +220,20 @@ TEST(Viewer, ADragFollowsTheCursorAsOneUndoStep) {
     EXPECT_NE(text(dir / "live.json"), text(dir / "before.json"));
     EXPECT_EQ(text(dir / "live.json"), text(dir / "once.json"));
     EXPECT_EQ(text(dir / "undone.json"), text(dir / "before.json"));
+    // The picked cluster's own layer count (its prototype's), one undo step.
+    int with_two = 0;
+    const nlohmann::json layered = nlohmann::json::parse(text(dir / "layers.json"));
+    for (const auto& c : layered["clusters"]) with_two += c.value("layers", 0) == 2;
+    EXPECT_EQ(with_two, 1);
+    EXPECT_EQ(text(dir / "unlayered.json"), text(dir / "once.json"));
     // Each step cooked what it changed only: one prototype made anew (the undo's cook too: the dragged one as it was).
     const auto count = [&](const std::string& what) {
         int n = 0;
         for (std::size_t at = r.err.find(what); at != std::string::npos; at = r.err.find(what, at + 1)) ++n;
         return n;
     };
-    EXPECT_EQ(count("applied the edit"), 6) << r.err;
-    EXPECT_EQ(count("ms: 1 of "), 6) << r.err;
+    EXPECT_EQ(count("applied the edit"), 8) << r.err;
+    EXPECT_EQ(count("ms: 1 of "), 8) << r.err;
     fs::remove_all(dir);
 }
 
