@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <chrono>
+#include <functional>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -92,23 +93,37 @@ DatabaseAtlasStats database_atlas_stats(const HrirDatabase& db) {
     return s;
 }
 
-RecordAtlas pack_record_atlas(const HrirDatabase& db, std::span<const std::uint32_t> records, const DatabaseAtlasStats& stats) {
+namespace {
+// A database record's atlas tiles, quantised with the database-wide ranges (record_atlas.h record_tiles).
+std::vector<std::uint8_t> database_record_tiles(const HrirDatabase& db, std::uint32_t r, const DatabaseAtlasStats& stats) {
+    const AngleGrids& g = db.params().grids;
+    const std::vector<AtlasTexels> texels = record_texels(db, r);
+    return record_tiles(g.views, g.hrir_length, stats.lo, stats.scale,
+                        [&](int v, int x) { return texels[static_cast<std::size_t>(v) * g.hrir_length + x]; });
+}
+
+// The atlas of `records` (checked against the database) with atlas record i's tiles from `tile(i)`, and the means and
+// re_norm of `stats`: pack_record_atlas, with or without a cache's tiles.
+RecordAtlas record_atlas_of(const HrirDatabase& db, std::span<const std::uint32_t> records, const DatabaseAtlasStats& stats,
+                            const std::function<const std::vector<std::uint8_t>&(std::size_t)>& tile) {
     const AngleGrids& g = db.params().grids;
     for (const std::uint32_t r : records)
         if (r >= db.size()) throw Error(db.path(), "records", "record " + std::to_string(r) + " is out of range");
-    std::size_t cached = SIZE_MAX;
-    std::vector<AtlasTexels> texels;
-    RecordAtlas a = pack_atlas(records.size(), g.views, g.hrir_length, stats.lo, stats.scale,
-                               [&](std::size_t i, int v, int x) {
-                                   if (cached != i) texels = record_texels(db, records[i]), cached = i;
-                                   return texels[static_cast<std::size_t>(v) * g.hrir_length + x];
-                               });
+    RecordAtlas a = place_record_tiles(records.size(), g.views, g.hrir_length, stats.lo, stats.scale, tile);
     for (const std::uint32_t r : records) {
         a.mean_alpha.push_back(stats.mean_alpha[r]);
         a.mean_a0.push_back(stats.mean_a0[r]);
     }
     a.re_norm = stats.re_norm;
     return a;
+}
+}  // namespace
+
+RecordAtlas pack_record_atlas(const HrirDatabase& db, std::span<const std::uint32_t> records, const DatabaseAtlasStats& stats) {
+    std::vector<std::uint8_t> tile;
+    return record_atlas_of(db, records, stats, [&](std::size_t i) -> const std::vector<std::uint8_t>& {
+        return tile = database_record_tiles(db, records[i], stats);
+    });
 }
 
 RecordAtlas pack_record_atlas(const HrirDatabase& db) {
@@ -442,30 +457,17 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
 // pack_record_atlas with the cache's tiles of the records it packed before.
 RecordAtlas pack_record_atlas_cached(CookCache::State& st, const HrirDatabase& db, std::span<const std::uint32_t> records,
                                      const DatabaseAtlasStats& stats) {
-    const AngleGrids& g = db.params().grids;
-    for (const std::uint32_t r : records)
-        if (r >= db.size()) throw Error(db.path(), "records", "record " + std::to_string(r) + " is out of range");
-    RecordAtlas a = place_record_tiles(records.size(), g.views, g.hrir_length, stats.lo, stats.scale,
-                                       [&](std::size_t i) -> const std::vector<std::uint8_t>& {
-                                           const std::uint32_t r = records[i];
-                                           auto it = st.tiles_last.find(r);
-                                           std::shared_ptr<const std::vector<std::uint8_t>> tile;
-                                           if (it != st.tiles_last.end()) tile = it->second;
-                                           else {
-                                               const std::vector<AtlasTexels> texels = record_texels(db, r);
-                                               tile = std::make_shared<const std::vector<std::uint8_t>>(record_tiles(
-                                                   g.views, g.hrir_length, stats.lo, stats.scale, [&](int v, int x) {
-                                                       return texels[static_cast<std::size_t>(v) * g.hrir_length + x];
-                                                   }));
-                                               ++st.now.records_packed;
-                                           }
-                                           return *st.tiles_now.insert_or_assign(r, std::move(tile)).first->second;
-                                       });
-    for (const std::uint32_t r : records) {
-        a.mean_alpha.push_back(stats.mean_alpha[r]);
-        a.mean_a0.push_back(stats.mean_a0[r]);
-    }
-    a.re_norm = stats.re_norm;
+    RecordAtlas a = record_atlas_of(db, records, stats, [&](std::size_t i) -> const std::vector<std::uint8_t>& {
+        const std::uint32_t r = records[i];
+        const auto it = st.tiles_last.find(r);
+        std::shared_ptr<const std::vector<std::uint8_t>> tile;
+        if (it != st.tiles_last.end()) tile = it->second;
+        else {
+            tile = std::make_shared<const std::vector<std::uint8_t>>(database_record_tiles(db, r, stats));
+            ++st.now.records_packed;
+        }
+        return *st.tiles_now.insert_or_assign(r, std::move(tile)).first->second;
+    });
     st.now.records = records.size();
     return a;
 }
