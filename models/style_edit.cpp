@@ -236,6 +236,85 @@ std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::
     return out;
 }
 
+RootSphere root_sphere(const HairStyle& style) {
+    std::vector<glm::dvec3> roots;
+    for (const Cluster& c : style.clusters) roots.push_back(c.placement.apply(c.shape->position(0.0)));
+    RootSphere s;
+    if (roots.empty()) return s;
+    for (const glm::dvec3& x : roots) s.centre += x / double(roots.size());
+    for (const glm::dvec3& x : roots) s.radius = std::max(s.radius, glm::distance(x, s.centre));
+    if (roots.size() < 4 || !(s.radius > 0.0)) return s;
+    // |x|² = 2 c·x + (r² − |c|²), linear in (c, r² − |c|²): the normal equations, in coordinates about the mean and
+    // in units of the spread so that the 4×4 system is well scaled.
+    glm::dmat4 ata(0.0);
+    glm::dvec4 atb(0.0);
+    for (const glm::dvec3& x : roots) {
+        const glm::dvec3 y = (x - s.centre) / s.radius;
+        const glm::dvec4 row(2.0 * y, 1.0);
+        ata += glm::outerProduct(row, row);
+        atb += row * glm::dot(y, y);
+    }
+    if (!(std::abs(glm::determinant(ata)) > 1e-9 * std::pow(double(roots.size()), 4.0))) return s;  // one plane: no sphere
+    const glm::dvec4 z = glm::inverse(ata) * atb;
+    const double r2 = z.w + glm::dot(glm::dvec3(z), glm::dvec3(z));
+    if (!(r2 > 0.0)) return s;
+    return {s.centre + s.radius * glm::dvec3(z), s.radius * std::sqrt(r2)};
+}
+
+std::size_t add_cluster(HairStyle& style, const NewCluster& n, AbsorptionMap* absorption) {
+    check_rows(style, absorption);
+    const auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (!finite(n.root)) throw Error::parameter("root", "must be finite");
+    if (!finite(n.down) || glm::length(n.down) == 0.0) throw Error::parameter("down", "must be finite and not zero");
+    if (n.direction && (!finite(*n.direction) || glm::length(*n.direction) == 0.0))
+        throw Error::parameter("direction", "must be finite and not zero");
+    if (!std::isfinite(n.length) || n.length < 0.0) throw Error::parameter("length", "must be finite and ≥ 0 (0: its neighbour's)");
+    if (n.name.empty()) throw Error::parameter("name", "must not be empty");
+    if (style.clusters.empty()) throw Error::parameter("add", "the style has no cluster to take a profile from");
+    std::size_t near = 0;
+    for (std::size_t c = 1; c < style.clusters.size(); ++c) {
+        const auto root = [&](std::size_t k) { return style.clusters[k].placement.apply(style.clusters[k].shape->position(0.0)); };
+        if (glm::distance(root(c), n.root) < glm::distance(root(near), n.root)) near = c;
+    }
+    const Cluster& from = style.clusters[near];
+    const double scale = from.placement.scale;
+    const glm::dvec3 down = glm::normalize(n.down);
+    const RootSphere scalp = root_sphere(style);
+    // −z across `normal` (or +x where −z is along it): where a crown's cluster leans.
+    const auto back_across = [](const glm::dvec3& normal) {
+        glm::dvec3 b = glm::dvec3(0.0, 0.0, -1.0) - glm::dot(glm::dvec3(0.0, 0.0, -1.0), normal) * normal;
+        if (glm::length(b) < 0.5) b = glm::dvec3(1.0, 0.0, 0.0) - glm::dot(glm::dvec3(1.0, 0.0, 0.0), normal) * normal;
+        return glm::normalize(b);
+    };
+    glm::dvec3 dir;
+    if (n.direction) {
+        dir = glm::normalize(*n.direction);
+        if (glm::dot(dir, down) < 0.0 && glm::length(glm::cross(dir, down)) < 0.3) dir = glm::normalize(dir + 0.5 * back_across(down));
+    } else {
+        const glm::dvec3 out = n.root - scalp.centre;
+        const glm::dvec3 normal = glm::length(out) > 0.0 ? glm::normalize(out) : -down;  // a root at the centre: up
+        glm::dvec3 downhill = down - glm::dot(down, normal) * normal;  // 0 at the crown, 1 on the equator
+        downhill += std::max(0.0, 0.3 - glm::length(downhill)) * back_across(normal);
+        dir = glm::normalize(downhill);
+    }
+    const std::size_t count = std::max<std::size_t>(4, style.clusters[from.prototype].shape->trajectory().control().size());
+    const double length = n.length > 0.0 ? n.length : scale * from.shape->length();
+    const double floor = std::max(scalp.radius, glm::distance(n.root, scalp.centre));
+    std::vector<glm::dvec3> points{n.root};
+    for (std::size_t i = 0; i + 1 < count; ++i) {
+        glm::dvec3 p = points.back() + length / double(count - 1) * glm::normalize(glm::mix(dir, down, double(i) / double(count - 2)));
+        const glm::dvec3 off = p - scalp.centre;
+        if (glm::length(off) < floor && glm::length(off) > 0.0) p = scalp.centre + floor * glm::normalize(off);
+        points.push_back(p);
+    }
+    const GeneralizedCylinder& g = *from.shape;
+    auto shape = make_shape(Spline3(std::move(points)), scaled(g.a_spline(), scale), scaled(g.b_spline(), scale), g.theta_spline());
+    auto density = std::make_shared<const DensitySource>(*from.density);
+    const std::size_t made = append_prototype(style, near, n.name, std::move(shape), std::move(density), absorption);
+    style.resolve();
+    return made;
+}
+
 std::optional<std::size_t> mirror_partner(const HairStyle& style, std::size_t cluster, int axis, double at, double tolerance) {
     check_clusters(style, std::span(&cluster, 1));
     if (axis < 0 || axis > 2) throw Error::parameter("mirror axis", "must be x, y or z");

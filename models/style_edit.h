@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "models/absorption_map.h"
@@ -38,6 +39,37 @@ std::vector<std::size_t> duplicate_clusters(HairStyle& style, std::span<const st
 // "_mirror" (the bone weights copied: a character's left and right bones are not known here). Returns their indices.
 std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::size_t> clusters, int axis, double at,
                                          AbsorptionMap* absorption = nullptr);
+
+// The sphere that best fits the clusters' roots (least squares): the scalp as the style knows it. It is where the
+// viewer plants a cluster added under the cursor, and the way a new cluster leaves its root. With fewer than four
+// roots, or roots on one plane or line (no sphere through them), the centre is the roots' mean and the radius their
+// largest distance from it.
+struct RootSphere {
+    glm::dvec3 centre{0.0};
+    double radius = 0.0;
+};
+RootSphere root_sphere(const HairStyle& style);
+
+// A cluster added from nothing (add_cluster): a new prototype rooted at `root` (style space) that leaves it along
+// `direction` and bends toward `down`, as hair falls, draped over the scalp (root_sphere).
+struct NewCluster {
+    glm::dvec3 root{0.0};
+    std::optional<glm::dvec3> direction;  // none: out of the scalp and down it (below)
+    double length = 0.0;                  // the trajectory's control polygon's length before draping; 0: its neighbour's
+    glm::dvec3 down{0.0, -1.0, 0.0};      // gravity in the style's space (the style's −y when it is y-up)
+    std::string name = "added";           // made unique with a number
+};
+// Appends the new cluster and returns its index. Its trajectory has as many control points as its neighbour's (the
+// cluster whose root is nearest `root`; at least 4), n − 1 segments of equal length: segment i along
+// mix(d₀, down, i/(n−2)), so that the path leaves along d₀ and its last segment falls straight down. d₀ is
+// `direction`, or by default the scalp's unit downhill tangent (down without its share along the scalp's normal): it
+// leaves along the scalp (a path leaving 14° or 27° out of it stood off the fitted clusters). At the crown, where the downhill tangent is short or none, it leans toward −z (the
+// back of a head whose face looks along +z, models/generalized_cylinder.h); so does a `direction` within 17° of up. Each point after the root that falls inside the scalp
+// sphere (grown to the root when the root lies outside it) is put back onto it: the cluster drapes over the head. From the neighbour it takes what is not its path: its A, B and θ profiles (in world
+// units), a copy of its density, its layer count, and its rows (bone weights, painted absorption), so that a cluster
+// added among others looks and moves like them. Throws coif::Error::parameter for a root, direction or length that is
+// not finite, a zero direction or down, a negative length, or an empty name.
+std::size_t add_cluster(HairStyle& style, const NewCluster& cluster, AbsorptionMap* absorption = nullptr);
 
 // The cluster that is `cluster`'s mirror image across x[axis] = at (the viewer's symmetry mode): a prototype of its own
 // (not an instance, not `cluster`'s prototype) whose trajectory has as many control points, each within `tolerance`

@@ -1,4 +1,4 @@
-// `coif style transform | mirror | duplicate | delete | set`: the viewer's cluster edits without a window
+// `coif style transform | mirror | duplicate | add | delete | set`: the viewer's cluster edits without a window
 // (models/style_edit.h), each reading a style and writing the edited one, with the painted absorption map's rows
 // following the clusters when one is given.
 #include <cstdio>
@@ -9,6 +9,7 @@
 #include "models/core/error.h"
 #include "models/hair_style.h"
 #include "models/style_edit.h"
+#include "online/shells/prepared_shells.h"
 #include "tools/cli.h"
 #include "tools/scene_options.h"
 
@@ -142,6 +143,40 @@ void add_style_edits(CLI::App& root) {
         const auto made = coif::duplicate_clusters(l.style, l.selection, !*as_copy, similarity(*dm, l.style, l.selection),
                                                    l.absorption ? &*l.absorption : nullptr);
         save(*dO, l, "added " + std::to_string(made.size()) + (*as_copy ? " copies" : " instances"));
+    });
+
+    struct AddOptions {
+        EditIo io;
+        std::vector<double> root, direction;
+        double length = 0.0;
+        std::string name = "added";
+    };
+    auto ao = std::make_shared<AddOptions>();
+    CLI::App* add = style->add_subcommand(
+        "add",
+        "Add a cluster from nothing: a new prototype rooted at --root that leaves it along --direction (default: away\n"
+        "from the centre of the sphere that fits the clusters' roots, the scalp) and bends down as hair falls. Its\n"
+        "profiles, density, layer count and rows are its nearest neighbour's (the cluster whose root is nearest), so it\n"
+        "looks and moves like the clusters around it; shape it further with `coif style set`." + rows);
+    add_io(add, ao->io, false);
+    add->add_option("--root", ao->root, "Where it grows from, X Y Z (the style's units)")->required()->expected(3);
+    add->add_option("--direction", ao->direction, "The way it leaves the root, X Y Z (any length)")->expected(3);
+    add->add_option("--length", ao->length, "Its trajectory's length (default: its neighbour's)")->check(CLI::PositiveNumber);
+    add->add_option("--name", ao->name, "Its name, made unique with a number")->capture_default_str();
+    coif::cli::examples(add, "  coif style add @default --root 0 18 -6 -o more.json\n"
+                             "  coif style add @default --root 5 14 0 --direction 1 0 0 --length 12 --name fringe -o more.json");
+    add->callback([ao] {
+        if (ao->name.empty()) throw coif::Error::parameter("--name", "must not be empty");
+        Loaded l = load(ao->io);
+        coif::NewCluster n;
+        n.root = {ao->root[0], ao->root[1], ao->root[2]};
+        if (ao->direction.size() == 3) n.direction = glm::dvec3(ao->direction[0], ao->direction[1], ao->direction[2]);
+        n.length = ao->length;
+        n.name = ao->name;
+        // The style's down: the shells' −y turned back into the style's space.
+        n.down = glm::transpose(glm::dmat3(coif::style_orientation(l.style))) * glm::dvec3(0.0, -1.0, 0.0);
+        const std::size_t made = coif::add_cluster(l.style, n, l.absorption ? &*l.absorption : nullptr);
+        save(ao->io, l, "added " + l.style.clusters[made].name);
     });
 
     auto xo = std::make_shared<EditIo>();

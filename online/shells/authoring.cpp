@@ -90,6 +90,47 @@ void Authoring::duplicate(const std::vector<std::size_t>& cs, bool as_instances,
     });
 }
 
+void Authoring::add(const Camera& camera, const glm::mat3& orientation, double x, double y) {
+    if (!style_) throw Error::parameter("add", "a baked asset is view-only: open its style to edit it");
+    glm::vec3 o, d;
+    camera.ray(static_cast<float>(x), static_cast<float>(y), o, d);
+    const glm::dmat3 to_style = glm::transpose(glm::dmat3(orientation));
+    const glm::dvec3 origin = to_style * glm::dvec3(o), dir = glm::normalize(to_style * glm::dvec3(d));
+    const RootSphere sphere = root_sphere(*style_);
+    // Nearest the eye of |origin + s dir − centre| = radius; a miss: the sphere's point nearest the ray.
+    const glm::dvec3 to_centre = sphere.centre - origin;
+    const double along = glm::dot(to_centre, dir), gap2 = glm::dot(to_centre, to_centre) - along * along;
+    const double r2 = sphere.radius * sphere.radius;
+    glm::dvec3 root;
+    if (gap2 <= r2 && along - std::sqrt(r2 - gap2) > 0.0) {
+        root = origin + (along - std::sqrt(r2 - gap2)) * dir;
+    } else {
+        const glm::dvec3 nearest = origin + std::max(along, 0.0) * dir - sphere.centre;
+        const double n = glm::length(nearest);
+        root = sphere.centre + (n > 0.0 ? sphere.radius / n * nearest : glm::dvec3(0.0, sphere.radius, 0.0));
+    }
+    NewCluster c;
+    c.root = root;
+    c.down = to_style * glm::dvec3(0.0, -1.0, 0.0);
+    const bool symmetric = symmetry_;
+    const double at = roots_middle(*style_, 0);
+    edit([&](HairStyle& s, AbsorptionMap* map) {
+        std::vector<std::size_t> made{add_cluster(s, c, map)};
+        if (!symmetric) return made;
+        const Cluster& added = s.clusters[made[0]];
+        const auto& control = added.shape->trajectory().control();
+        double length = 0, off = 0;  // how far its own mirror image lies from it
+        for (std::size_t i = 0; i < control.size(); ++i) {
+            if (i > 0) length += glm::distance(control[i], control[i - 1]);
+            glm::dvec3 m = control[i];
+            m.x = 2.0 * at - m.x;
+            off = std::max(off, glm::distance(m, control[i]));
+        }
+        if (off > kSymmetryTolerance * length) made.push_back(mirror_clusters(s, made, 0, at, map)[0]);
+        return made;
+    });
+}
+
 void Authoring::edit_clusters(const std::vector<std::size_t>& cs, const std::function<void(HairStyle&)>& f) {
     const std::vector<std::pair<std::size_t, std::size_t>> pairs = partners(cs);  // (edited, its partner), before the edit
     const double at = style_ ? roots_middle(*style_, 0) : 0.0;

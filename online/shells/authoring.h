@@ -55,6 +55,12 @@ public:
     // undo step (models/style_edit.h duplicate_clusters); in symmetry mode each copy of a cluster with a mirror partner
     // gets its mirror image beside the partner, so that the style stays symmetric. The copies become the selection.
     void duplicate(const std::vector<std::size_t>& cs, bool as_instances, const glm::dvec3& translate);
+    // A cluster added from nothing (models/style_edit.h add_cluster), one undo step: rooted where the ray through image
+    // pixel (x, y) of `camera` meets the sphere that fits the roots (root_sphere; the scalp: the hit nearest the eye,
+    // or, for a ray that passes by, the sphere's point nearest the ray), leaving it outward and falling along the
+    // shells' −y. `orientation` turns the style into the shells' space. In symmetry mode its mirror image across the
+    // head's plane is added too, unless it is its own (a cluster on the plane). The new clusters become the selection.
+    void add(const Camera& camera, const glm::mat3& orientation, double x, double y);
     void set_symmetry(bool on) { symmetry_ = on; }
     bool symmetry() const { return symmetry_; }
     // The partner a symmetric edit of `c` would change now (none without symmetry mode or without one).

@@ -223,6 +223,13 @@ private:
                     authoring_.pick(camera_at(fb_w, fb_h), scene_.renderer->prepared(), a.x, a.y);
                     break;
                 }
+                case K::add: {
+                    int fb_w, fb_h;
+                    glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
+                    authoring_.add(camera_at(fb_w, fb_h), orientation(), a.x, a.y);
+                    sync();
+                    break;
+                }
                 case K::drag_point: {
                     int fb_w, fb_h;
                     glfwGetFramebufferSize(window_.glfw(), &fb_w, &fb_h);
@@ -296,7 +303,12 @@ private:
         }
         for (const int key : input_.keys) {
             switch (key) {
-                case GLFW_KEY_ESCAPE:
+                case GLFW_KEY_ESCAPE:  // an armed "add" is disarmed first
+                    if (adding_) {
+                        adding_ = false;
+                        break;
+                    }
+                    return false;
                 case GLFW_KEY_Q: return false;
                 case GLFW_KEY_F: fit(); break;
                 case GLFW_KEY_B: environment_ = !environment_; break;
@@ -347,6 +359,20 @@ private:
             last_x_ = x, last_y_ = y;
             return true;
         }
+        // "add" armed in the panel: the next click plants a cluster there (one undo step).
+        if (left && adding_) {
+            adding_ = false;
+            try {
+                authoring_.add(camera_at(fb_w, fb_h), orientation(), at.x, at.y);
+                sync();
+                message_.clear();
+            } catch (const Error& e) {
+                message_ = e.what();
+            }
+            picking_ = true;  // the press is spent: no orbit until it is let go
+            return true;
+        }
+        if (picking_ && left) return true;
         if (left && alt(w)) {
             if (!picking_) authoring_.pick(camera_at(fb_w, fb_h), scene_.renderer->prepared(), at.x, at.y, shift(w));
             picking_ = true;
@@ -680,6 +706,10 @@ private:
                                    partner ? authoring_.style()->clusters[*partner].name.c_str() : "none (edits stay on this side)");
             profile_widgets();
         }
+        if (ImGui::Button(adding_ ? "click where it grows (Esc: no)" : "add")) adding_ = !adding_;
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("a new cluster rooted on the scalp where you click next, shaped like its nearest neighbour");
+        ImGui::SameLine();
         if (ImGui::Button("duplicate")) cluster_edit("duplicate");
         ImGui::SameLine();
         if (ImGui::Button("mirror (x)")) cluster_edit("mirror");
@@ -1075,7 +1105,8 @@ private:
     char style_path_[512] = "style.json";
     Brush brush_;
     bool stroking_ = false;  // Ctrl + left button held: one stroke
-    bool picking_ = false;   // Alt + left button held: one pick
+    bool picking_ = false;   // Alt + left button held: one pick (or the click that added a cluster)
+    bool adding_ = false;    // the panel's "add": the next click plants a cluster
     char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
     Program background_, present_, copy_;  // the environment, the display pass, the refinement's adds

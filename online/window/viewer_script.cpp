@@ -151,8 +151,8 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
                 if (!n.is_string()) throw Error(file, at, "expected cluster names");
                 act.names.push_back(n.get<std::string>());
             }
-        } else if (key == "pick") {
-            act.kind = K::pick;
+        } else if (key == "pick" || key == "add") {
+            act.kind = key == "pick" ? K::pick : K::add;
             if (!v.is_array() || v.size() != 2) throw Error(file, at, "expected [X, Y]");
             act.x = number(v[0], file, at, 0, 16384);
             act.y = number(v[1], file, at, 0, 16384);
@@ -235,7 +235,7 @@ std::vector<ViewerAction> read_viewer_script(const std::filesystem::path& path) 
         } else {
             throw Error(file, place, "unknown action '" + key +
                                          "' (orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo, "
-                                         "save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, delete, "
+                                         "save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, add, delete, "
                                          "profile, layers, save_style, symmetry)");
         }
         actions.push_back(std::move(act));

@@ -38,6 +38,10 @@
 //                                           optional; turned and scaled about the centre of its roots)
 //   {"duplicate": {"translate": [X, Y, Z], "as_copy": false}}   copies of the selection, moved; they become the selection
 //   {"mirror": {"axis": "x", "at": X}}      mirror images of the selection (at: default the middle of the roots)
+//   {"add": [X, Y]}                         a cluster added from nothing, rooted on the scalp under window pixel
+//                                           (X, Y) (the sphere that fits the roots), leaving it outward and falling,
+//                                           shaped like its nearest neighbour (and its mirror image in symmetry mode);
+//                                           it becomes the selection
 //   {"delete": true}                        the selection removed
 //   {"profile": {"a"|"b"|"theta_deg": [V, …]}}   the selected cluster's profile's control points
 //   {"layers": N}                           the selected cluster's own number of layered shells (its prototype's)
@@ -58,10 +62,10 @@ struct ViewerAction {
     enum class Kind {
         orbit, zoom, pan, fit, set, params, background, panel, exposure, rotate_lights, env, paint, undo, redo,
         save_absorption, frames, screenshot, capture, select, pick, drag_point, transform, duplicate, mirror, remove,
-        profile, save_style, symmetry, layers
+        add, profile, save_style, symmetry, layers
     };
     Kind kind = Kind::frames;
-    double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), rotate_lights (x), frames (x)
+    double x = 0, y = 0;            // orbit (degrees), pan, zoom (x), exposure (x), rotate_lights (x), frames (x), pick, add
     int lights = 40;                // env: SRBF lights fitted to a map
     double radius = 12, strength = 0.5;        // paint (at: x, y)
     glm::vec3 sigma_a{4.0f, 5.0f, 6.0f};       // paint

@@ -198,6 +198,113 @@ TEST(StyleEdit, DuplicatesAreMovedCopiesAsInstancesOrPrototypes) {
     }
 }
 
+// Roots on a known sphere: centre (1, 2, 3), radius 5, at polar angles up to 80° from +y; each cluster hangs down.
+// Cluster "small" is an instance at half size of the first, placed so its root is on the sphere too.
+HairStyle scalp_style() {
+    nlohmann::json doc = {{"format", "coif-style"}, {"version", 1},
+                          {"layout", {{"core_radius", 0.2}, {"layers", 2}, {"s_t", 2}, {"s_u", 4}, {"grid", {3, 2}}, {"mesh", {2, 2}}, {"gaussian_width", 0.05}}}};
+    nlohmann::json clusters = nlohmann::json::array();
+    const glm::dvec3 centre(1, 2, 3);
+    int k = 0;
+    for (const double polar : {0.3, 0.8, 1.4})
+        for (const double around : {0.0, 2.1, 4.2}) {
+            const glm::dvec3 r = centre + 5.0 * glm::dvec3(std::sin(polar) * std::cos(around), std::cos(polar), std::sin(polar) * std::sin(around));
+            std::string name = "c";  // (not "c" + …: GCC 12's -Wrestrict false positive)
+            name += std::to_string(k++);
+            clusters.push_back({{"name", name},
+                                {"trajectory", {{r.x, r.y, r.z}, {r.x, r.y - 4, r.z}, {r.x, r.y - 8, r.z + 1}}},
+                                {"a", {0.8, 0.6}}, {"b", {0.5}}, {"theta_deg", {20}},
+                                {"density", {{"kind", "strands"}, {"strand_weight", 2}, {"strands", {{0, 0.5, 30, 0.6, 40}}}}}});
+        }
+    // c0's root r0 placed at centre + 5 (0, 0, −1) by scale ½: x ↦ ½ x + t.
+    const glm::dvec3 r0 = centre + 5.0 * glm::dvec3(std::sin(0.3), std::cos(0.3), 0.0), want = centre + glm::dvec3(0, 0, -5);
+    const glm::dvec3 t = want - 0.5 * r0;
+    clusters.push_back({{"name", "small"}, {"instance_of", "c0"},
+                        {"transform", {{"scale", 0.5}, {"rotation", {1, 0, 0, 0}}, {"translation", {t.x, t.y, t.z}}}}});
+    doc["clusters"] = clusters;
+    return style_from_json(doc, "<scalp>");
+}
+
+TEST(StyleEdit, AClusterAddedFromNothingDrapesOverTheScalpAndTakesItsNeighboursLook) {
+    HairStyle s = scalp_style();
+    const RootSphere scalp = root_sphere(s);
+    EXPECT_LT(glm::distance(scalp.centre, glm::dvec3(1, 2, 3)), 1e-9);  // exact roots: the fit is exact to rounding
+    EXPECT_NEAR(scalp.radius, 5.0, 1e-9);
+    // Beside "small" (the instance at half size, root at the sphere's −z): its look at its size, its rows.
+    AbsorptionMap paint(static_cast<int>(s.clusters.size()), 3, glm::vec3(1.0f));
+    paint.at(9, 2) = glm::vec3(7.0f);
+    NewCluster n;
+    n.root = glm::dvec3(1, 2, 3) + 5.0 * glm::normalize(glm::dvec3(0.3, 0.5, -1.0));
+    const std::size_t c = add_cluster(s, n, &paint);
+    ASSERT_EQ(c, 10u);
+    const Cluster& added = s.clusters[c];
+    EXPECT_EQ(added.name, "added");
+    EXPECT_FALSE(added.instance_of.has_value());
+    EXPECT_EQ(paint.clusters, 11);
+    EXPECT_EQ(paint.at(10, 2), glm::vec3(7.0f));
+    EXPECT_NEAR(added.shape->a(0.0), 0.4, 1e-12);  // c0's A(0) = 0.8 at "small"'s scale ½
+    EXPECT_NEAR(added.shape->b(1.0), 0.25, 1e-12);
+    ASSERT_EQ(added.density->strands.size(), 1u);
+    EXPECT_EQ(added.density->strand_weight, 2.0);
+    const std::vector<glm::dvec3>& p = added.shape->trajectory().control();
+    ASSERT_EQ(p.size(), 4u);  // the neighbour's 3 control points, at least 4
+    EXPECT_EQ(p[0], n.root);
+    // It leaves along the scalp (tangent, downhill), never goes inside it, and its last segment falls straight down.
+    const glm::dvec3 normal = glm::normalize(n.root - glm::dvec3(1, 2, 3));
+    EXPECT_NEAR(glm::dot(glm::normalize(p[1] - p[0]), normal), 0.0, 0.02);  // the next point put back onto the sphere
+    EXPECT_LT((p[1] - p[0]).y, 0.0);
+    for (const glm::dvec3& x : p) EXPECT_GE(glm::distance(x, glm::dvec3(1, 2, 3)), 5.0 - 1e-9);
+    const glm::dvec3 last = glm::normalize(p[3] - p[2]);
+    EXPECT_LT(glm::distance(last, glm::dvec3(0, -1, 0)), 1e-12);
+    EXPECT_NO_THROW(parse_style(style_to_json(s).dump(), "<added>"));
+
+    // At the crown it leans toward −z; a second one there is named apart.
+    NewCluster crown;
+    crown.root = glm::dvec3(1, 7, 3);
+    const std::size_t k = add_cluster(s, crown);
+    EXPECT_EQ(s.clusters[k].name, "added2");
+    const glm::dvec3 first = s.clusters[k].shape->trajectory().control()[1] - crown.root;
+    EXPECT_LT(first.z, -0.9 * glm::length(first));
+    for (const glm::dvec3& x : s.clusters[k].shape->trajectory().control())  // where it bends down it would go inside
+        EXPECT_GE(glm::distance(x, glm::dvec3(1, 2, 3)), 5.0 - 1e-9);
+    // A given direction on the equator straight down: the path is that line, of the given length.
+    NewCluster hang;
+    hang.root = glm::dvec3(6, 2, 3);
+    hang.direction = glm::dvec3(0, -2, 0);
+    hang.length = 9.0;
+    const auto& q = s.clusters[add_cluster(s, hang)].shape->trajectory().control();
+    EXPECT_LT(glm::distance(q.back(), glm::dvec3(6, -7, 3)), 1e-12);
+
+    // Refused, the style unchanged: a root or a direction not finite, a zero direction or down, a negative length, no
+    // name, a map with other rows.
+    const std::string before = style_text(s);
+    const auto refused = [&](NewCluster bad, AbsorptionMap* map = nullptr) { EXPECT_THROW((void)add_cluster(s, bad, map), Error); };
+    NewCluster bad = n;
+    bad.root.x = std::nan("");
+    refused(bad);
+    bad = n, bad.direction = glm::dvec3(0.0);
+    refused(bad);
+    bad = n, bad.direction = glm::dvec3(1.0, INFINITY, 0.0);
+    refused(bad);
+    bad = n, bad.down = glm::dvec3(0.0);
+    refused(bad);
+    bad = n, bad.length = -1.0;
+    refused(bad);
+    bad = n, bad.name.clear();
+    refused(bad);
+    refused(n, &paint);  // 11 rows for 13 clusters
+    EXPECT_EQ(style_text(s), before);
+
+    // Fewer than four roots: no sphere; the roots' mean and their largest distance from it.
+    HairStyle two = scalp_style();
+    two.clusters.resize(2);
+    two.resolve();
+    const RootSphere few = root_sphere(two);
+    const glm::dvec3 r0 = two.clusters[0].shape->position(0.0), r1 = two.clusters[1].shape->position(0.0);
+    EXPECT_LT(glm::distance(few.centre, 0.5 * (r0 + r1)), 1e-12);
+    EXPECT_NEAR(few.radius, 0.5 * glm::distance(r0, r1), 1e-12);
+}
+
 TEST(StyleEdit, DeletingKeepsEveryOtherClusterWhereItWas) {
     const HairStyle before = style();
     HairStyle d = before;
