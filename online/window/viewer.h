@@ -10,9 +10,10 @@
 // Esc or Q quits. Ctrl + left drag paints absorption. Cluster authoring (a style's; online/shells/authoring.h): Alt +
 // click selects the cluster under the cursor (Alt + Shift + click adds or removes one), a left drag from one of its
 // control points' handles moves that point in the plane facing the camera (X or Y: along that axis only), Delete
-// removes the selection, and the panel's "clusters" section duplicates, mirrors, deletes and saves the style. Ctrl + Z
-// and Ctrl + Y undo and redo strokes and edits alike. An edited style is cooked again, keeping the prototypes it did not
-// change (online/scene/cook.h CookCache: 365–490 ms for an edit of the default style; the view keeps its framing).
+// removes the selection, and the panel's "clusters" section adds a cluster on the scalp where the next click lands,
+// duplicates, mirrors, deletes and saves the style. Ctrl + Z and Ctrl + Y undo and redo strokes and edits alike. An
+// edited style is cooked again, keeping what the edit did not change (online/scene/cook.h CookCache: 29–36 ms for a
+// dragged point of the default style; the view keeps its framing).
 // The panel (Dear ImGui) edits every parameter of `coif render --params` (saved to and loaded from that file), the
 // hair's colour as melanin concentrations, the exposure, and the environment: its turn, and a map
 // from `maps_folder` fitted with a chosen number of SRBF lights in the background while the viewer goes on (quitting

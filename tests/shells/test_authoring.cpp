@@ -2,6 +2,8 @@
 // restoring the style and the map exactly; a dragged control point follows the cursor in the plane facing the camera.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "models/core/error.h"
 #include "models/style_edit.h"
 #include "online/shells/authoring.h"
@@ -149,6 +151,59 @@ TEST(Authoring, SymmetryModeDuplicatesAndDeletesThePartnerToo) {
     a.remove({0});
     ASSERT_EQ(a.style()->clusters.size(), 1u);
     EXPECT_EQ(a.style()->clusters[0].name, "right");
+}
+
+TEST(Authoring, AClusterIsAddedWhereTheCursorMeetsTheScalp) {
+    // Roots on the sphere of radius 5 about the origin, symmetric across x = 0; the camera at (0, 0, 50) looks at it.
+    std::string clusters;
+    for (const glm::dvec3 r : {glm::dvec3(-3, 4, 0), glm::dvec3(3, 4, 0), glm::dvec3(-3, 0, 4), glm::dvec3(3, 0, 4),
+                               glm::dvec3(-4, 0, -3), glm::dvec3(4, 0, -3), glm::dvec3(0, 5, 0)}) {
+        char c[320];
+        std::snprintf(c, sizeof c,
+                      R"(%s{"name": "r%zu", "trajectory": [[%g, %g, %g], [%g, %g, %g]], "a": [1], "b": [1], "theta_deg": [0],
+                          "density": {"kind": "uniform", "value": 0.5}})",
+                      clusters.empty() ? "" : ", ", clusters.size(), r.x, r.y, r.z, r.x, r.y - 8, r.z);
+        clusters += c;
+    }
+    Authoring a(parse_style(R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 2, "s_t": 2, "s_u": 4, "grid": [2, 2], "mesh": [1, 1], "gaussian_width": 0.05},
+      "clusters": [)" + clusters + "]}",
+                            "<scalp>"),
+                AbsorptionMap(7, 2, glm::vec3(1.0f)));
+    const std::string start = style_text(*a.style());
+    Camera cam;
+    const auto root = [&](std::size_t c) { return a.style()->clusters[c].shape->trajectory().control()[0]; };
+    // The middle pixel's ray is the −z axis: it meets the sphere at (0, 0, 5), on the mirror plane, so symmetry mode
+    // adds no mirror image there.
+    a.set_symmetry(true);
+    a.add(cam, glm::mat3(1.0f), 0.5 * cam.width, 0.5 * cam.height);
+    ASSERT_EQ(a.style()->clusters.size(), 8u);
+    EXPECT_LT(glm::distance(root(7), glm::dvec3(0, 0, 5)), 1e-4);  // float rays, the file's rounding
+    EXPECT_EQ(a.selection(), std::vector<std::size_t>{7});
+    EXPECT_EQ(a.map()->clusters, 8);
+    // Right of the middle: a root on the sphere under that pixel, and its mirror image in the same step.
+    a.add(cam, glm::mat3(1.0f), 0.5 * cam.width + 30, 0.5 * cam.height - 20);
+    ASSERT_EQ(a.style()->clusters.size(), 10u);
+    const glm::dvec3 r = root(8);
+    EXPECT_NEAR(glm::length(r), 5.0, 1e-4);
+    EXPECT_GT(r.x, 0.5);
+    EXPECT_GT(r.y, 0.3);  // image y runs down
+    glm::vec3 o, d;
+    cam.ray(static_cast<float>(0.5 * cam.width + 30), static_cast<float>(0.5 * cam.height - 20), o, d);
+    EXPECT_LT(glm::length(glm::cross(glm::dvec3(glm::normalize(d)), r - glm::dvec3(o))), 1e-3);  // on the pixel's ray
+    EXPECT_LT(glm::distance(root(9), glm::dvec3(-r.x, r.y, r.z)), 1e-4);
+    EXPECT_EQ(a.selection(), (std::vector<std::size_t>{8, 9}));
+    // A ray that passes by: the sphere's point nearest it.
+    a.set_symmetry(false);
+    a.add(cam, glm::mat3(1.0f), 0.0, 0.5 * cam.height);
+    EXPECT_NEAR(glm::length(root(10)), 5.0, 1e-4);
+    EXPECT_LT(root(10).x, -4.0);
+    cam.ray(0.0f, static_cast<float>(0.5 * cam.height), o, d);
+    EXPECT_NEAR(glm::dot(glm::normalize(root(10)), glm::dvec3(glm::normalize(d))), 0.0, 1e-4);  // across the ray
+    // Undone one step at a time, back to the style it was.
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(a.undo());
+    EXPECT_EQ(style_text(*a.style()), start);
+    EXPECT_EQ(a.map()->clusters, 7);
 }
 
 TEST(Authoring, ADraggedPointFollowsTheCursorInThePlaneFacingTheCameraOrAlongItsAxis) {

@@ -227,7 +227,7 @@ TEST(Cli, StrandsPerGuideFillSparseHairToTheDatabasesDensity) {
 }
 
 TEST(Cli, StyleEditsMoveCopyMirrorAndDeleteClustersWithTheirPaintedRows) {
-    // coif style transform | duplicate | mirror | delete | set on the default style (models/style_edit.h; its exactness
+    // coif style transform | duplicate | mirror | delete | set | add on the default style (models/style_edit.h; its exactness
     // is models.StyleEdit.*): the clusters asked for change, the painted absorption rows follow, bad input writes nothing.
     const auto dir = test::scratch_dir("cli-style-edit");
     const auto p = [&](const char* name) { return "'" + (dir / name).string() + "'"; };
@@ -257,8 +257,14 @@ TEST(Cli, StyleEditsMoveCopyMirrorAndDeleteClustersWithTheirPaintedRows) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "set.json"))["clusters"][8]["a"].size(), 3u);
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "set.json"))["clusters"][8]["layers"], 2);
-    // The result draws (c10 with 2 layered shells, the rest with 4).
-    r = run_coif("render --style " + p("set.json") + " --width 48 --height 32 --samples 1 -o " + p("set.png"));
+    r = run_coif("style add " + p("set.json") + " --root 0 13 -6 --name crown -o " + p("added.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("added crown"));
+    const auto added = nlohmann::json::parse(std::ifstream(dir / "added.json"));
+    ASSERT_EQ(added["clusters"].size(), 66u);
+    EXPECT_EQ(added["clusters"][65]["trajectory"][0], nlohmann::json::array({0.0, 13.0, -6.0}));
+    // The result draws (c10 with 2 layered shells, the rest with 4, and the cluster added).
+    r = run_coif("render --style " + p("added.json") + " --width 48 --height 32 --samples 1 -o " + p("set.png"));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     // Bad input: a name the style lacks, a map without its output, nothing to set, a bad scale. No file written.
     r = run_coif("style delete @default --clusters c3 nope -o " + p("bad.json"));
@@ -269,6 +275,9 @@ TEST(Cli, StyleEditsMoveCopyMirrorAndDeleteClustersWithTheirPaintedRows) {
     r = run_coif("style set @default --cluster c3 -o " + p("bad.json"));
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_THAT(r.err, HasSubstr("nothing to set"));
+    r = run_coif("style add @default --root 0 nan 0 -o " + p("bad.json"));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, HasSubstr("root"));
     r = run_coif("style transform @default --clusters c3 --scale -1 -o " + p("bad.json"));
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_FALSE(fs::exists(dir / "bad.json"));

@@ -279,6 +279,38 @@ TEST(Viewer, ADraggedControlPointUndoesRedoesAndSavesExactly) {
     fs::remove_all(dir);
 }
 
+TEST(Viewer, AClusterAddedUnderTheCursorIsDrawnWithItsMirrorImageAndUndoes) {
+    // The panel's "add" as a script action, in symmetry mode: a cluster rooted on the scalp under the pixel, and its
+    // mirror image across the head's plane, one undo step; the picture shows them.
+    REQUIRE_WINDOW();
+    const fs::path dir = test::scratch_dir("viewer-add");
+    const std::string d = dir.string() + "/";
+    write_text(dir / "script.json", R"([{"panel": false}, {"save_style": ")" + d + R"(before.json"},
+        {"screenshot": ")" + d + R"(before.exr"}, {"symmetry": true}, {"add": [150, 50]},
+        {"save_style": ")" + d + R"(added.json"}, {"screenshot": ")" + d + R"(added.exr"},
+        {"undo": true}, {"save_style": ")" + d + R"(undone.json"}])");
+    const auto r = run_coif("view --width 240 --height 160 --samples 1 --script '" + d + "script.json'", kWindow);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto text = [](const fs::path& p) {
+        std::ifstream in(p);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const auto added = nlohmann::json::parse(text(dir / "added.json"));
+    ASSERT_EQ(added["clusters"].size(), 66u);
+    EXPECT_EQ(added["clusters"][64]["name"], "added");
+    EXPECT_EQ(added["clusters"][65]["name"], "added_mirror");
+    const auto& a = added["clusters"][64]["trajectory"][0];
+    const auto& m = added["clusters"][65]["trajectory"][0];
+    EXPECT_NEAR(a[1].get<double>(), m[1].get<double>(), 1e-4);  // the mirror image's root: x reflected, y and z kept
+    EXPECT_NEAR(a[2].get<double>(), m[2].get<double>(), 1e-4);
+    EXPECT_EQ(text(dir / "undone.json"), text(dir / "before.json"));
+    const Image before = read_image(dir / "before.exr"), drawn = read_image(dir / "added.exr");
+    int changed = 0;
+    for (std::size_t i = 0; i < before.pixels.size(); ++i) changed += before.pixels[i] != drawn.pixels[i];
+    EXPECT_GT(changed, 100) << "the added clusters must show";
+    fs::remove_all(dir);
+}
+
 TEST(Viewer, AStillPictureRefinesToCoifRendersSupersampledImage) {
     REQUIRE_WINDOW();
     const fs::path dir = test::scratch_dir("viewer-refine");
@@ -381,6 +413,7 @@ TEST(Viewer, BadScriptsAreRefusedBeforeTheWindowOpens) {
     refused("style", R"([{"save_style": "style.txt"}])", ".json");
     refused("transform", R"([{"transform": {"turn": [0, 1, 0]}}])", "unknown key 'turn'");
     refused("symmetry", R"([{"symmetry": "x"}])", "expected true or false");
+    refused("add", R"([{"add": [10]}])", "expected [X, Y]");
     EXPECT_FALSE(fs::exists(out));
     fs::remove_all(dir);
 }
