@@ -686,6 +686,9 @@ private:
             overlay->AddLine(from, to, IM_COL32(255, 200, 40, 255), 2.0f);
             overlay->AddCircle(to, kHandleRadius + 2, IM_COL32(255, 255, 255, 255), 0, 2.0f);
         }
+        // A new selection opens the section, so that what can be done with it shows.
+        if (authoring_.selection() != shown_selection_ && !authoring_.selection().empty()) ImGui::SetNextItemOpen(true);
+        shown_selection_ = authoring_.selection();
         if (!ImGui::CollapsingHeader("clusters (Alt + click selects)")) return;
         ImGui::TextWrapped("Alt + Shift + click adds or removes a cluster");
         if (!authoring_.style()) {
@@ -1107,6 +1110,7 @@ private:
     bool stroking_ = false;  // Ctrl + left button held: one stroke
     bool picking_ = false;   // Alt + left button held: one pick (or the click that added a cluster)
     bool adding_ = false;    // the panel's "add": the next click plants a cluster
+    std::vector<std::size_t> shown_selection_;  // the selection the panel last drew
     char absorption_path_[512] = "absorption.exr";
     HairScene scene_;
     Program background_, present_, copy_;  // the environment, the display pass, the refinement's adds
