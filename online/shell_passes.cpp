@@ -43,7 +43,12 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
     set_grid(grid);
 
     vertices = make_buffer(shells.vertices.data(), shells.vertices.size() * sizeof(ShellVertex));
-    indices = make_buffer(shells.indices.data(), shells.indices.size() * sizeof(std::uint32_t));
+    {
+        LodMeshes lod = lod_meshes(shells);
+        indices = make_buffer(lod.indices.data(), lod.indices.size() * sizeof(std::uint32_t));
+        lod_ranges = std::move(lod.ranges);
+        lod_edge = std::move(lod.edge);
+    }
     cluster_ids = make_buffer(shells.cluster_ids.data(), shells.cluster_ids.size() * sizeof(std::uint32_t));
     // The placements change when the hair moves (set_placement).
     instances = make_buffer(shells.instances.data(), shells.instances.size() * sizeof(ShellInstance), GL_DYNAMIC_STORAGE_BIT);
@@ -281,6 +286,28 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
     return *slot;
 }
 
+void ShellsPass::pick_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view,
+                             std::span<const ClusterBox> boxes, int height, float budget_px, std::vector<int>& levels) const {
+    // Pixels per unit of the shells' space at eye depth z: P₁₁ · height/2 · (the view's scale) / z (a perspective
+    // projection), or without the division (an orthographic one, whose w does not depend on z).
+    const bool perspective = view.projection[2][3] != 0.0f;
+    const float per_unit = view.projection[1][1] * 0.5f * static_cast<float>(height) * glm::length(glm::vec3(view.view[0]));
+    for (std::size_t c = 0; c < boxes.size(); ++c) {
+        float depth = std::numeric_limits<float>::max();  // the box's nearest corner: the cluster's largest projection
+        for (const glm::vec3& corner : boxes[c]) depth = std::min(depth, -(view.view * glm::vec4(corner, 1.0f)).z);
+        if (perspective && !(depth > 1e-6f)) {  // the eye at or inside the box: full detail
+            levels[c] = 0;
+            continue;
+        }
+        const float scale = glm::length(glm::vec3(shells.instances[c].model[0]));
+        std::array<float, kLodLevels> px{};
+        for (int k = 0; k < kLodLevels; ++k)
+            px[static_cast<std::size_t>(k)] =
+                gpu.lod_edge[shells.cluster_proto[c]][static_cast<std::size_t>(k)] * scale * per_unit / (perspective ? depth : 1.0f);
+        levels[c] = pick_lod(px, levels[c], budget_px);
+    }
+}
+
 FragmentLists& ShellsPass::make_lists() {
     if (!lists_) lists_ = std::make_unique<FragmentLists>();
     return *lists_;
@@ -335,9 +362,14 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     // Clusters wholly outside the view make no fragment: skipped, the image is the same. The weighted compositing
     // normalises its fragments' eye distances to the range of the clusters' boxes.
     std::vector<char> visible(shells.clusters(), 1);
-    if (s.cull || weighted) {
+    const bool lod = !floor_only && s.lod_pixels > 0.0f;
+    std::vector<int>& level = d.levels ? *d.levels : level_;
+    if (level.size() != shells.clusters() || (lod && d.detail == ShellDraw::Detail::fresh)) level.assign(shells.clusters(), 0);
+    const bool pick = lod && d.detail != ShellDraw::Detail::hold;
+    if (s.cull || weighted || pick) {
         if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
         const std::vector<ClusterBox> boxes = cluster_boxes(shells, prototype_boxes_);
+        if (pick) pick_levels(gpu, shells, view, boxes, height, s.lod_pixels, level);
         float nearest = std::numeric_limits<float>::max(), farthest = 0.0f;
         for (std::size_t c = 0; c < boxes.size(); ++c) {
             if (s.cull) visible[c] = box_in_view(vp, boxes[c]);
@@ -396,7 +428,8 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     const GLint rho_loc = floor_only || !s.own_cluster_shadow ? -1 : prog.uniform("u_layer_rho");
     DiskLayout own = L;  // the drawn cluster's prototype's layout: its own layer count
     const auto draw_layer = [&](std::size_t c, int j) {
-        const MeshRange& r = shells.meshes[shells.cluster_proto[c]][static_cast<std::size_t>(j)];
+        const MeshRange& r = gpu.lod_ranges[shells.cluster_proto[c]][static_cast<std::size_t>(j)][lod ? static_cast<std::size_t>(level[c]) : 0];
+        triangles_ += static_cast<std::size_t>(r.count) / 3;
         if (layer_loc >= 0) glUniform1i(layer_loc, j);
         if (rho_loc >= 0) glUniform1f(rho_loc, static_cast<float>(own.layer_v(j + 1)));  // the layer mesh's own surface
         glDrawElementsInstancedBaseVertexBaseInstance(
@@ -405,9 +438,12 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
             static_cast<GLuint>(c));
     };
     drawn_ = 0;
+    triangles_ = 0;
+    at_level_ = {};
     for (std::size_t c : order) {
         if (!visible[c]) continue;
         ++drawn_;
+        ++at_level_[lod ? static_cast<std::size_t>(level[c]) : 0];
         const int layers = static_cast<int>(shells.meshes[shells.cluster_proto[c]].size());
         if (layers != own.layers) {
             own.layers = layers;

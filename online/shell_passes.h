@@ -25,6 +25,7 @@
 #include "online/shells/prepared_shells.h"
 #include "online/shells/record_atlas.h"
 #include "online/shells/shadow_grid.h"
+#include "online/shells/shell_lod.h"
 #include "online/shells/shell_settings.h"
 #include "online/weighted_blend.h"
 
@@ -47,6 +48,10 @@ struct ShellGpu {
     ShellGpu(const PreparedShells& shells, const RecordAtlas& atlas, const DensityGrid& grid, const std::string& db_path);
 
     DiskLayout layout;
+    // The layer meshes at each level of detail (online/shells/shell_lod.h): their ranges in `indices`, and the outer
+    // layers' longest edges.
+    std::vector<std::vector<std::array<MeshRange, kLodLevels>>> lod_ranges;  // [slot][layer][level]
+    std::vector<std::array<float, kLodLevels>> lod_edge;                     // [slot][level], prototype coordinates
     VertexArray vao;
     Buffer vertices, indices, cluster_ids, instances, sectors, samples;
     std::size_t sample_count = 0, clusters = 0;
@@ -140,6 +145,13 @@ struct ShellDraw {
     bool first = true, last = true;
     float distance_scale = 1.0f;  // world units per unit of the shells' space (the instance's scale)
     glm::vec2 jitter{0.0f};       // sub-pixel shift of the image, pixels (x right, y down)
+    // The clusters' levels of detail (ShellSettings::lod_pixels): `levels`, the hysteresis state of this hair instance
+    // (null: the pass's own), picked anew from this view (follow), picked as if nothing had been drawn before (fresh:
+    // ShellRenderer::render's first frame, so that an image does not depend on what was drawn before it), or drawn as
+    // they are (hold: render()'s other frames and tiles, so that all its frames draw the same meshes).
+    enum class Detail { follow, fresh, hold };
+    Detail detail = Detail::follow;
+    std::vector<int>* levels = nullptr;
 };
 
 class ShellsPass {
@@ -156,8 +168,15 @@ public:
     FragmentLists& make_lists();
     // Clusters drawn by the last draw (those in the view, with ShellSettings::cull).
     std::size_t clusters_drawn() const { return drawn_; }
+    // Of those, how many at each level of detail (ShellSettings::lod_pixels), and the triangles drawn (both faces).
+    const std::array<std::size_t, kLodLevels>& clusters_at_level() const { return at_level_; }
+    std::size_t triangles_drawn() const { return triangles_; }
+    void forget_levels() { level_.clear(); }
 
 private:
+    // level_ for a frame seen from `view`, `height` pixels high, each cluster's box `boxes` (ShellSettings::lod_pixels).
+    void pick_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, std::span<const ClusterBox> boxes,
+                     int height, float budget_px, std::vector<int>& levels) const;
     const Program& shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
                                    DepthTest depth);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
@@ -165,7 +184,11 @@ private:
     std::unique_ptr<FragmentLists> lists_;
     std::unique_ptr<WeightedBlend> weighted_;  // the weighted compositing's targets (made on first use)
     GLint target_framebuffer_ = 0;  // the exact and weighted compositings': bound when their first draw began
-    std::size_t drawn_ = 0;
+    std::size_t drawn_ = 0, triangles_ = 0;
+    std::array<std::size_t, kLodLevels> at_level_{};
+    // Each cluster's level of detail, drawn last (pick_lod's hysteresis), when a draw brings no state of its own
+    // (ShellDraw::levels). A draw without level of detail (the floor, lod_pixels 0) draws level 0 and keeps these.
+    std::vector<int> level_;
     std::vector<PrototypeBox> prototype_boxes_;  // of the shells drawn (their meshes do not change), made on first use
 };
 

@@ -53,6 +53,7 @@ struct InstanceLights {
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
     int shadows_step = 0;
+    std::vector<int> levels;  // its clusters' levels of detail (ShellDraw::levels)
 };
 
 struct ShellRenderer::Impl {
@@ -66,6 +67,7 @@ struct ShellRenderer::Impl {
     float shadows_radius = -1.0f;
     int shadows_step = 0;   // the lighting step the shadows were marched at
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
+    ShellDraw::Detail detail = ShellDraw::Detail::follow;  // how the next draws pick levels of detail (render(): fresh, hold)
     // What gpu->lighting holds the sums of: a frame whose inputs are the same (render()'s shifted frames among them:
     // the jitter moves only the image) reuses them (ShellSettings::reuse_lighting).
     LightingKey lighting_key;
@@ -351,6 +353,7 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
         d.first = i == 0;
         d.last = i + 1 == instances.size();
         d.distance_scale = scale;
+        d.levels = &il.levels;
         try {
             passes(v, d, settings, false);
         } catch (...) {
@@ -362,8 +365,10 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
     finish_frame(settings, false);
 }
 
-void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const ShellSettings& s, bool floor_only) {
+void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const ShellSettings& s, bool floor_only) {
     Impl& m = *impl_;
+    ShellDraw d = draw;
+    d.detail = m.detail;
     ShellGpu& gpu = *m.gpu;
     // Shadow pass: only when the lights, the fibre radius or the samples it marches changed. It marches the samples the
     // lighting pass lights (its step), and every sample for the per-fragment lighting, which reads them all.
@@ -395,6 +400,10 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& d, const Shel
     }
     timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, lit, floor_only, m.lighting);
     timings_.clusters_drawn = (d.first ? 0 : timings_.clusters_drawn) + m.shells_pass.clusters_drawn();
+    timings_.triangles_drawn = (d.first ? 0 : timings_.triangles_drawn) + m.shells_pass.triangles_drawn();
+    if (d.first) timings_.clusters_at_level = {};
+    for (int k = 0; k < kLodLevels; ++k)
+        timings_.clusters_at_level[static_cast<std::size_t>(k)] += m.shells_pass.clusters_at_level()[static_cast<std::size_t>(k)];
     if (s.timed) {
         glFinish();
         timings_.shells_wall_ms = wall_ms_since(t_pass);
@@ -443,6 +452,11 @@ std::vector<glm::vec3> ShellRenderer::lighting_sample(std::size_t index) const {
 
 const PreparedShells& ShellRenderer::prepared() const { return impl_->shells; }
 
+void ShellRenderer::forget_detail() {
+    impl_->shells_pass.forget_levels();
+    for (InstanceLights& il : impl_->instances) il.levels.clear();
+}
+
 Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings) {
     // One frame of the image. An exact frame that overflowed its fragment storage left holes: it is drawn
     // again, with the storage grown to what the frame counted. One that still overflows has met the GPU's
@@ -457,10 +471,16 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     const ShellSettings* frame_settings = &settings;
     timings_.tiles = 1;
     struct InRender {
-        bool& flag;
-        explicit InRender(bool& f) : flag(f) { flag = true; }
-        ~InRender() { flag = false; }
-    } in_render(impl_->in_render);
+        Impl& m;
+        explicit InRender(Impl& impl) : m(impl) {
+            m.in_render = true;
+            m.detail = ShellDraw::Detail::fresh;  // the first frame picks the levels of detail as if nothing came before
+        }
+        ~InRender() {
+            m.in_render = false;
+            m.detail = ShellDraw::Detail::follow;
+        }
+    } in_render(*impl_);
     double lighting_ms = 0;  // the render's lighting pass (its first frame)
     const auto overflowed = [&] {
         const FragmentLists* lists = impl_->shells_pass.lists();
@@ -469,6 +489,7 @@ Image ShellRenderer::render(const Camera& camera, const ShellSettings& settings)
     const auto draw_whole = [&](RenderTarget& target) {
         target.bind();
         draw(camera, *frame_settings);
+        impl_->detail = ShellDraw::Detail::hold;  // every later frame and tile draws the first one's meshes
         lighting_ms += timings_.lighting_wall_ms;
         frame_settings = &later;
         if (!overflowed()) return target.read_back();

@@ -39,6 +39,7 @@
 //
 // Conventions: world is y-up centimetres after `orientation` (the style's hang axis turned to −y,
 // as the strand preview does); light directions point towards the light; the camera is coif::Camera.
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <span>
@@ -50,6 +51,7 @@
 #include "models/core/camera.h"
 #include "models/core/image.h"
 #include "online/fragment_lists.h"
+#include "online/shells/shell_lod.h"
 #include "online/frame.h"
 #include "online/shells/hair_asset.h"
 #include "online/shells/prepared_shells.h"
@@ -87,6 +89,8 @@ struct ShellTimings {
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact or weighted compositing's resolve (timed)
     std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
+    std::array<std::size_t, kLodLevels> clusters_at_level{};  // of those, at each level of detail (ShellSettings::lod_pixels)
+    std::size_t triangles_drawn = 0;  // by the last frame's draws, both faces of every layer counted
     int tiles = 1;              // render()'s last frame: 1, or the tiles it was drawn in (beyond the fragment storage)
     int lighting_step = 1;      // the last draw's step along the lighting samples (ShellSettings::lighting_step, as the style allows)
     bool lighting_ran = false;  // the last draw's lighting pass ran (false: its sums were reused, ShellSettings::reuse_lighting)
@@ -189,6 +193,10 @@ public:
     // The lighting samples (world position, tangent, frame normal r0) in cluster-major order.
     std::vector<glm::vec3> lighting_sample(std::size_t index) const;
     const ShellTimings& timings() const { return timings_; }
+    // Forgets the levels of detail drawn so far (ShellSettings::lod_pixels' hysteresis): the next frame picks them as
+    // render() does, as if nothing had been drawn before. A viewer calls it when the view comes to rest, so that its
+    // still picture is coif render's.
+    void forget_detail();
     // The CPU-side preparation the GPU copy was made from (online/shells/prepared_shells.h).
     const PreparedShells& prepared() const;
     // Bounds of the placed outer layers (world, oriented).

@@ -285,6 +285,11 @@ void add_render(CLI::App& root) {
                          renderer.timings().shadows_ms,
                          sh.size(), direct / n, fibres / n);
         }
+        if (settings.lod_pixels > 0.0f) {
+            const auto& at = renderer.timings().clusters_at_level;
+            std::fprintf(stderr, "level of detail (edges within %g px): clusters at levels 0 / 1 / 2: %zu / %zu / %zu; %zu triangles drawn\n",
+                         double(settings.lod_pixels), at[0], at[1], at[2], renderer.timings().triangles_drawn);
+        }
         if (settings.compositing == coif::gl::Compositing::exact) {
             const coif::gl::FragmentListStats fl = renderer.fragment_list_stats();
             std::fprintf(stderr, "exact compositing: %d tile(s); %llu fragments (%llu dropped), %llu pixels over the resolve's %d, "

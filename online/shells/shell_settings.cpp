@@ -66,10 +66,10 @@ namespace {
 // The fields a preset sets (of a ShellSettings, const or not), in one place for setting and for comparing.
 template <class Settings>
 auto preset_choices(Settings& s) {
-    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread);
+    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels);
 }
 auto preset_choices(const QualityPreset& p) {
-    return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f);
+    return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f, p.lod_pixels);
 }
 }  // namespace
 
@@ -93,7 +93,7 @@ ParamTable<ShellSettings> make_table() {
     // nothing.
     Param<S> quality{"quality", ParamKind::choice, "", 0, 0, false,
                      "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
-                     "tangent_spread_deg); later keys override it",
+                     "tangent_spread_deg, lod_pixels); later keys override it",
                      {}, {}, {}, {}};
     quality.names = quality_names();
     quality.names.emplace_back("custom");
@@ -142,6 +142,10 @@ ParamTable<ShellSettings> make_table() {
                              "light every k-th lighting sample along a cluster, interpolate between (must divide the "
                              "samples' intervals: 1, 2, 4 ... for the default mesh)",
                              [](auto& s) -> auto& { return s.lighting_step; }));
+    t.push_back(real_param<S>("lod_pixels", "px", 0.0, 1024.0,
+                              "level of detail: draw each cluster with the coarsest mesh whose triangles' edges project "
+                              "within this many pixels (0: full meshes)",
+                              [](auto& s) -> auto& { return s.lod_pixels; }));
     return t;
 }
 

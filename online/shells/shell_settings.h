@@ -68,6 +68,10 @@ struct ShellSettings {
     // with the mesh rows), 2 half, 4 a quarter. It must divide the samples' intervals (32 for the default style's mesh).
     // docs/renderer.md ("Quality presets") measures the cost and the error.
     int lighting_step = 2;
+    // Level of detail of the tessellation (online/shells/shell_lod.h): each cluster is drawn at the coarsest of
+    // kLodLevels meshes whose longest triangle edge projects within this many pixels (with hysteresis); 0 draws the
+    // full meshes. docs/renderer.md ("Level of detail") measures the cost and the error.
+    float lod_pixels = 24.0f;
 };
 // Quality presets (issue 18): named sets of the choices that trade the image against time. `full` is the reference of
 // the others: every lighting sample, two records per sector, re to its second harmonic, the fibres' measured tangents,
@@ -82,21 +86,22 @@ struct QualityPreset {
     Compositing compositing;
     int neighbours, fourier_order, lighting_step;
     bool one_tangent;  // light every fibre along its cluster's axis (tangent_spread 0) instead of the measured tilts
+    float lod_pixels;  // ShellSettings::lod_pixels
 };
 inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::low, "low", "weighted blended compositing (bounded memory), one record per sector, re's first harmonic, a "
                           "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis "
                           "(previews, dragging)",
-     Compositing::weighted, 1, 1, 4, true},
+     Compositing::weighted, 1, 1, 4, true, 48.0f},
     {Quality::medium, "medium",
      "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples where the "
      "clusters are smooth",
-     Compositing::exact, 1, 1, 4, false},
+     Compositing::exact, 1, 1, 4, false, 32.0f},
     {Quality::high, "high",
      "exact compositing, two records per sector, half the lighting samples where the clusters are smooth (the default)",
-     Compositing::exact, 2, 2, 2, false},
+     Compositing::exact, 2, 2, 2, false, 24.0f},
     {Quality::full, "full", "exact compositing, two records per sector, every lighting sample: the reference of the others",
-     Compositing::exact, 2, 2, 1, false},
+     Compositing::exact, 2, 2, 1, false, 0.0f},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);

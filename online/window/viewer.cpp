@@ -889,6 +889,8 @@ private:
                            shell_settings_json(settings_).dump(), version_};
         const bool still = key == last_key_ && !moving() && o_.offscreen_frames == 0;
         last_key_ = key;
+        // Levels of detail keep their hysteresis only through a drag; any other frame picks them as coif render does.
+        if (!moving()) scene_.renderer->forget_detail();
         if (!still) {
             draw_picture(glm::vec2(0.0f), width, height, framebuffer_);
             refined_ = 0;

@@ -1,0 +1,92 @@
+#include "online/shells/shell_lod.h"
+
+#include <algorithm>
+#include <string>
+
+#include "models/core/error.h"
+
+namespace coif {
+
+GridStride lod_stride(int level, int rows, int columns) {
+    GridStride s;
+    for (int k = 0; k < level; ++k) {
+        if ((rows - 1) / (2 * s.t) >= 1) s.t *= 2;
+        if ((columns - 1) / (2 * s.u) >= kLodMinColumns) s.u *= 2;
+    }
+    return s;
+}
+
+std::vector<int> strided(int count, int stride) {
+    std::vector<int> kept;
+    for (int i = 0; i < count; i += stride) kept.push_back(i);
+    if (count > 0 && kept.back() != count - 1) kept.push_back(count - 1);
+    return kept;
+}
+
+std::vector<std::uint32_t> grid_triangles(int rows, int columns, GridStride s) {
+    const std::vector<int> r = strided(rows, s.t), q = strided(columns, s.u);
+    std::vector<std::uint32_t> out;
+    out.reserve((r.size() - 1) * (q.size() - 1) * 6);
+    const auto id = [&](int rr, int qq) { return static_cast<std::uint32_t>(rr * columns + qq); };
+    for (std::size_t a = 0; a + 1 < r.size(); ++a)
+        for (std::size_t b = 0; b + 1 < q.size(); ++b)  // (r,q) → (r,q+1) → (r+1,q): counter-clockwise from outside
+            out.insert(out.end(), {id(r[a], q[b]), id(r[a], q[b + 1]), id(r[a + 1], q[b]), id(r[a], q[b + 1]),
+                                   id(r[a + 1], q[b + 1]), id(r[a + 1], q[b])});
+    return out;
+}
+
+LodMeshes lod_meshes(const PreparedShells& shells) {
+    LodMeshes m;
+    m.indices.assign(shells.indices.data(), shells.indices.data() + shells.indices.size());
+    m.ranges.resize(shells.meshes.size());
+    m.edge.resize(shells.meshes.size());
+    for (std::size_t slot = 0; slot < shells.meshes.size(); ++slot) {
+        const DiskLayout L = shells.layout_of_slot(slot);
+        const int rows = L.s_t * L.mesh_t + 1, columns = L.s_u * L.mesh_u + 1;
+        const std::vector<MeshRange>& layers = shells.meshes[slot];
+        m.ranges[slot].resize(layers.size());
+        for (std::size_t j = 0; j < layers.size(); ++j) {
+            const MeshRange& full = layers[j];
+            if (full.vertex_count != rows * columns)
+                throw Error::parameter("shells", "prototype slot " + std::to_string(slot) + " layer " + std::to_string(j) + " has " +
+                                                     std::to_string(full.vertex_count) + " vertices, not its layout's " +
+                                                     std::to_string(rows) + " x " + std::to_string(columns));
+            m.ranges[slot][j][0] = full;
+            for (int level = 1; level < kLodLevels; ++level) {
+                const std::vector<std::uint32_t> tri = grid_triangles(rows, columns, lod_stride(level, rows, columns));
+                MeshRange r = full;
+                r.first = static_cast<std::uint32_t>(m.indices.size());
+                r.count = static_cast<std::int32_t>(tri.size());
+                m.indices.insert(m.indices.end(), tri.begin(), tri.end());
+                m.ranges[slot][j][static_cast<std::size_t>(level)] = r;
+            }
+        }
+        // The outer layer's longest edge at each level: along t between kept rows, around between kept columns.
+        const MeshRange& outer = layers.back();
+        const auto at = [&](int row, int column) {
+            return shells.vertices[static_cast<std::size_t>(outer.base_vertex + row * columns + column)].position;
+        };
+        for (int level = 0; level < kLodLevels; ++level) {
+            const GridStride s = lod_stride(level, rows, columns);
+            const std::vector<int> r = strided(rows, s.t), q = strided(columns, s.u);
+            float longest = 0.0f;
+            for (std::size_t a = 0; a < r.size(); ++a)
+                for (std::size_t b = 0; b < q.size(); ++b) {
+                    if (a + 1 < r.size()) longest = std::max(longest, glm::distance(at(r[a], q[b]), at(r[a + 1], q[b])));
+                    if (b + 1 < q.size()) longest = std::max(longest, glm::distance(at(r[a], q[b]), at(r[a], q[b + 1])));
+                }
+            m.edge[slot][static_cast<std::size_t>(level)] = longest;
+        }
+    }
+    return m;
+}
+
+int pick_lod(std::span<const float, kLodLevels> edge_px, int current, float budget_px) {
+    int level = 0;
+    if (!(budget_px > 0.0f)) return level;
+    for (int k = 1; k < kLodLevels; ++k)
+        if (edge_px[static_cast<std::size_t>(k)] <= budget_px * (k > current ? kLodHysteresis : 1.0f)) level = k;
+    return level;
+}
+
+}  // namespace coif
