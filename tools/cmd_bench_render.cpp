@@ -127,6 +127,15 @@ void add_bench_render(CLI::App& root) {
                 renderer.draw(cam, moving);  // warm-up: the variant's shaders compiled
                 scene.context->finish();
                 const coif::gl::ShellFrameTimes t = coif::gl::time_shell_frames(renderer, cam, moving, false, o->frames);
+                const std::size_t triangles_drawn = renderer.timings().triangles_drawn;
+                const auto at_level = renderer.timings().clusters_at_level;
+                // The same preset with every cluster's full meshes: what its level of detail saves, in the same run.
+                double full_meshes_ms = t.wall_ms;
+                if (moving.lod_pixels > 0.0f) {
+                    coif::gl::ShellSettings no_lod = moving;
+                    no_lod.lod_pixels = 0.0f;
+                    full_meshes_ms = coif::gl::time_shell_frames(renderer, cam, no_lod, false, o->frames).wall_ms;
+                }
                 const coif::gl::ShellFrameTimes unmoved =
                     coif::gl::time_shell_frames(renderer, cam, preset(q, true), false, o->frames);
                 const auto& st = renderer.stats();
@@ -136,6 +145,8 @@ void add_bench_render(CLI::App& root) {
                                 {"lighting_samples", st.lighting_samples}, {"shadow_grid", {st.grid_x, st.grid_y, st.grid_z}},
                                 {"prepare_s", st.prepare_seconds}, {"shadow_pass_ms", shadows_ms},
                                 {"lighting_step", renderer.timings().lighting_step},
+                                {"lod_pixels", moving.lod_pixels}, {"triangles_drawn", triangles_drawn},
+                                {"clusters_at_level", at_level}, {"frame_ms_full_meshes", full_meshes_ms},
                                 {"frame_ms", t.wall_ms}, {"fps", 1000.0 / t.wall_ms},
                                 {"still_frame_ms", unmoved.wall_ms}, {"lighting_pass_ms", t.lighting_ms},
                                 {"shells_ms", t.shells_ms}, {"resolve_ms", t.resolve_ms}, {"full_floor_ms", floor.wall_ms},
@@ -172,7 +183,9 @@ void add_bench_render(CLI::App& root) {
                     "compositing's per-pixel sort and blend is the resolve. Every frame lights again, as when the view\n"
                     "moves; 'still' is a frame where nothing moved (the lighting pass's sums reused). x floor: the frame over\n"
                     "full's shells rasterised and blended with a trivial shader. Error against full's image (coif compare's\n"
-                    "appearance metrics): blurred PSNR, detail ratio, radiance ratio (lowest and highest channel), mask IoU.\n");
+                    "appearance metrics): blurred PSNR, detail ratio, radiance ratio (lowest and highest channel), mask IoU.\n"
+                    "Level of detail: the triangles drawn per frame (thousands), and the frame with every cluster's full\n"
+                    "meshes ('full mesh', the preset otherwise the same) beside it.\n");
         std::string last;
         for (const auto& r : rows) {
             const std::string scene_name = r["scene"].get<std::string>();
@@ -180,18 +193,19 @@ void add_bench_render(CLI::App& root) {
                 std::printf("\n%s: %zu clusters, %zu triangles, prepare %.2f s, shadow pass %.1f ms, floor of full %.1f ms\n",
                             scene_name.c_str(), r["clusters"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
                             r["prepare_s"].get<double>(), r["shadow_pass_ms"].get<double>(), r["full_floor_ms"].get<double>());
-                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %8s %7s %11s %6s\n", "quality", "frame", "fps", "lighting",
-                            "shells", "resolve", "x floor", "still", "bPSNR", "detail", "radiance", "IoU");
-                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %8s %7s %11s %6s\n", "", "ms", "", "ms", "ms", "ms", "",
-                            "ms", "dB", "", "", "");
+                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %6s %9s %8s %7s %11s %6s\n", "quality", "frame", "fps", "lighting",
+                            "shells", "resolve", "x floor", "still", "tris", "full mesh", "bPSNR", "detail", "radiance", "IoU");
+                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %6s %9s %8s %7s %11s %6s\n", "", "ms", "", "ms", "ms", "ms", "",
+                            "ms", "k", "ms", "dB", "", "", "");
                 last = scene_name;
             }
             const auto& e = r["error_vs_full"];
             const auto rad = e["radiance_ratio"].get<std::vector<double>>();
-            std::printf("  %-7s %8.1f %6.2f %9.1f %8.1f %8.1f %8.2f %8.1f %8s %7.3f %5.3f-%5.3f %6.3f\n",
+            std::printf("  %-7s %8.1f %6.2f %9.1f %8.1f %8.1f %8.2f %8.1f %6.0f %9.1f %8s %7.3f %5.3f-%5.3f %6.3f\n",
                         r["quality"].get<std::string>().c_str(), r["frame_ms"].get<double>(), r["fps"].get<double>(),
                         r["lighting_pass_ms"].get<double>(), r["shells_ms"].get<double>(), r["resolve_ms"].get<double>(),
                         r["ratio_to_full_floor"].get<double>(), r["still_frame_ms"].get<double>(),
+                        r["triangles_drawn"].get<double>() / 1000.0, r["frame_ms_full_meshes"].get<double>(),
                         coif::format_metric(e["blurred_psnr_db"].get<double>(), 1).c_str(), e["detail_ratio"].get<double>(),
                         *std::min_element(rad.begin(), rad.end()), *std::max_element(rad.begin(), rad.end()),
                         e["mask_iou"].get<double>());
