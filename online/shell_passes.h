@@ -172,6 +172,12 @@ public:
     const std::array<std::size_t, kLodLevels>& clusters_at_level() const { return at_level_; }
     std::size_t triangles_drawn() const { return triangles_; }
     void forget_levels() { level_.clear(); }
+    // What the pass keeps of the shells it drew (their prototypes' boxes, the levels of detail): forgotten when the
+    // renderer is given another hair (ShellRenderer::set_hair), whose meshes may differ with the same counts.
+    void forget_shells() {
+        prototype_boxes_.clear();
+        level_.clear();
+    }
 
 private:
     // level_ for a frame seen from `view`, `height` pixels high, each cluster's box `boxes` (ShellSettings::lod_pixels).

@@ -162,6 +162,7 @@ void ShellRenderer::set_hair(CookedShells cooked) {
     m.shadow_source = Strands{};
     m.moved_strands = Strands{};
     m.shadow_strand_cluster.clear();
+    m.shells_pass.forget_shells();  // its cached boxes were of the last hair's meshes
     m.invalidate_shadows();
 
     const PreparedShells& p = m.shells;

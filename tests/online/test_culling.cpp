@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "models/style_edit.h"
 #include "online/gl_context.h"
 #include "online/scene/cook.h"
 #include "online/shell_renderer.h"
@@ -63,6 +64,36 @@ TEST(Culling, AViewOfOneClusterDrawsOneWithTheSamePixels) {
     s.cull = true;
     (void)r.render(Camera::orbit(r.bounds_min(), r.bounds_max(), 0.3f, 0.2f, 64, 48), s);
     EXPECT_EQ(r.timings().clusters_drawn, 2u);
+}
+
+TEST(Culling, AHairGivenAgainIsCulledByItsOwnBoxes) {
+    // set_hair keeps the renderer (its programs and passes): the boxes it culls by must be the new hair's, though the
+    // counts of clusters and prototypes are the same (an edit that moves a cluster).
+    auto context = gl::Context::headless();
+    HairStyle style = test::two_cluster_style();
+    gl::ShellRenderer r(cook_shells(style, test::test_index(), glm::mat3(1.0f)));
+    r.set_lights(test::two_lights());
+    gl::ShellSettings s;
+    s.samples = 1;
+    (void)r.render(Camera::orbit(r.bounds_min(), r.bounds_max(), 0.3f, 0.2f, 64, 48), s);  // the boxes made
+    move_control_point(style, 1, 0, {27, 0, 0});  // "right" from x = 3 to x = 30
+    move_control_point(style, 1, 1, {27, 0, 0});
+    move_control_point(style, 1, 2, {27, 0, 0});
+    r.set_hair(cook_shells(style, test::test_index(), glm::mat3(1.0f)));
+    Camera camera;  // narrowly at the moved cluster, far from where it was
+    camera.eye = glm::vec3(30.0f, -5.0f, 8.0f);
+    camera.target = glm::vec3(30.0f, -5.0f, 0.0f);
+    camera.fov_y = glm::radians(20.0f);
+    camera.width = 64;
+    camera.height = 96;
+    s.background = glm::vec3(0.0f);
+    const Image image = r.render(camera, s);
+    EXPECT_EQ(r.timings().clusters_drawn, 1u);
+    double sum = 0;  // the colour over black (not the alpha channel, 1 everywhere)
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) sum += image.at(x, y)[c];
+    EXPECT_GT(sum, 0.0) << "the moved cluster must show";
 }
 
 }  // namespace
