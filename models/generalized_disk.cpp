@@ -99,15 +99,30 @@ LayerMesh layer_mesh(const GeneralizedCylinder& c, const DiskLayout& layout, int
             m.texcoord.emplace_back(static_cast<float>(fu), static_cast<float>(t));
         }
     }
+    m.indices = grid_triangles(m.rows, m.columns);
+    return m;
+}
+
+std::vector<int> strided(int count, int stride) {
+    std::vector<int> kept;
+    for (int i = 0; i < count; i += stride) kept.push_back(i);
+    if (count > 0 && kept.back() != count - 1) kept.push_back(count - 1);
+    return kept;
+}
+
+std::vector<std::uint32_t> grid_triangles(int rows, int columns, GridStride s) {
+    const std::vector<int> r = strided(rows, s.t), q = strided(columns, s.u);
+    std::vector<std::uint32_t> out;
+    if (r.size() < 2 || q.size() < 2) return out;
+    out.reserve((r.size() - 1) * (q.size() - 1) * 6);
+    const auto id = [&](int rr, int qq) { return static_cast<std::uint32_t>(rr * columns + qq); };
     // Counter-clockwise seen from outside: (a, b, c) with (b − a) × (c − a) along ∂P/∂u × ∂P/∂t,
     // i.e. (r,q) → (r,q+1) → (r+1,q).
-    m.indices.reserve(static_cast<std::size_t>(m.rows - 1) * (m.columns - 1) * 6);
-    for (int r = 0; r + 1 < m.rows; ++r)
-        for (int q = 0; q + 1 < m.columns; ++q) {
-            const auto id = [&](int rr, int qq) { return static_cast<std::uint32_t>(rr * m.columns + qq); };
-            m.indices.insert(m.indices.end(), {id(r, q), id(r, q + 1), id(r + 1, q), id(r, q + 1), id(r + 1, q + 1), id(r + 1, q)});
-        }
-    return m;
+    for (std::size_t a = 0; a + 1 < r.size(); ++a)
+        for (std::size_t b = 0; b + 1 < q.size(); ++b)
+            out.insert(out.end(), {id(r[a], q[b]), id(r[a], q[b + 1]), id(r[a + 1], q[b]), id(r[a], q[b + 1]),
+                                   id(r[a + 1], q[b + 1]), id(r[a + 1], q[b])});
+    return out;
 }
 
 }  // namespace coif

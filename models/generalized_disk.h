@@ -102,4 +102,15 @@ struct LayerMesh {
 // Layer j's outer surface, placed by `place` (an instance's similarity transform).
 LayerMesh layer_mesh(const GeneralizedCylinder& c, const DiskLayout& layout, int j, const Similarity& place = {});
 
+// Rows and columns of a layer mesh's grid joined: every t-th row and u-th column (the shells' level of detail,
+// online/shells/shell_lod.h; (1, 1): all of them).
+struct GridStride {
+    int t = 1, u = 1;
+};
+// The rows (or columns) a stride keeps: 0, s, 2s, …, and the last.
+std::vector<int> strided(int count, int stride);
+// The triangles of a rows × columns grid (row-major vertices) on the rows and columns `s` keeps, counter-clockwise seen
+// from outside: layer_mesh's triangle list at stride (1, 1).
+std::vector<std::uint32_t> grid_triangles(int rows, int columns, GridStride s = {});
+
 }  // namespace coif

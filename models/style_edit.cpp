@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <glm/gtc/quaternion.hpp>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,9 @@
 
 namespace coif {
 namespace {
+
+// A cluster's root in the style's space: its axis at t = 0, placed.
+glm::dvec3 placed_root(const Cluster& c) { return c.placement.apply(c.shape->position(0.0)); }
 
 void check_clusters(const HairStyle& style, std::span<const std::size_t> clusters) {
     std::set<std::size_t> seen;
@@ -147,7 +151,7 @@ Similarity similarity_about(const HairStyle& style, std::span<const std::size_t>
     glm::dvec3 p(0.0);
     if (pivot) p = *pivot;
     else {
-        for (const std::size_t c : clusters) p += style.clusters[c].placement.apply(style.clusters[c].shape->position(0.0));
+        for (const std::size_t c : clusters) p += placed_root(style.clusters[c]);
         if (!clusters.empty()) p /= static_cast<double>(clusters.size());
     }
     Similarity s;
@@ -163,7 +167,7 @@ double roots_middle(const HairStyle& style, int axis) {
     if (axis < 0 || axis > 2) throw Error::parameter("axis", "must be x, y or z");
     double lo = 1e300, hi = -1e300;
     for (const Cluster& c : style.clusters) {
-        const double x = c.placement.apply(c.shape->position(0.0))[axis];
+        const double x = placed_root(c)[axis];
         lo = std::min(lo, x), hi = std::max(hi, x);
     }
     return style.clusters.empty() ? 0.0 : 0.5 * (lo + hi);
@@ -238,7 +242,7 @@ std::vector<std::size_t> mirror_clusters(HairStyle& style, std::span<const std::
 
 RootSphere root_sphere(const HairStyle& style) {
     std::vector<glm::dvec3> roots;
-    for (const Cluster& c : style.clusters) roots.push_back(c.placement.apply(c.shape->position(0.0)));
+    for (const Cluster& c : style.clusters) roots.push_back(placed_root(c));
     RootSphere s;
     if (roots.empty()) return s;
     for (const glm::dvec3& x : roots) s.centre += x / double(roots.size());
@@ -271,11 +275,10 @@ std::size_t add_cluster(HairStyle& style, const NewCluster& n, AbsorptionMap* ab
     if (!std::isfinite(n.length) || n.length < 0.0) throw Error::parameter("length", "must be finite and ≥ 0 (0: its neighbour's)");
     if (n.name.empty()) throw Error::parameter("name", "must not be empty");
     if (style.clusters.empty()) throw Error::parameter("add", "the style has no cluster to take a profile from");
-    std::size_t near = 0;
-    for (std::size_t c = 1; c < style.clusters.size(); ++c) {
-        const auto root = [&](std::size_t k) { return style.clusters[k].placement.apply(style.clusters[k].shape->position(0.0)); };
-        if (glm::distance(root(c), n.root) < glm::distance(root(near), n.root)) near = c;
-    }
+    std::size_t near = 0;  // the cluster whose root is nearest
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < style.clusters.size(); ++c)
+        if (const double d = glm::distance(placed_root(style.clusters[c]), n.root); d < nearest) near = c, nearest = d;
     const Cluster& from = style.clusters[near];
     const double scale = from.placement.scale;
     const glm::dvec3 down = glm::normalize(n.down);

@@ -1,12 +1,25 @@
 #include "online/shells/authoring.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "models/core/error.h"
 #include "models/style_edit.h"
 #include "online/shells/shell_pick.h"
 
 namespace coif {
+namespace {
+
+// The length of a cluster's placed control polygon: the scale of kSymmetryTolerance.
+double control_length(const Cluster& cl) {
+    const auto& control = cl.shape->trajectory().control();
+    double length = 0;
+    for (std::size_t i = 1; i < control.size(); ++i)
+        length += glm::distance(cl.placement.apply(control[i]), cl.placement.apply(control[i - 1]));
+    return length;
+}
+
+}  // namespace
 
 Authoring::Authoring(std::optional<HairStyle> style, std::optional<AbsorptionMap> map) : painting_(std::move(map)) {
     if (style) style_ = std::make_shared<const HairStyle>(std::move(*style));
@@ -45,12 +58,7 @@ bool Authoring::pick(const Camera& camera, const PreparedShells& shells, double 
 
 std::optional<std::size_t> Authoring::symmetric_partner(std::size_t c) const {
     if (!symmetry_ || !style_ || c >= style_->clusters.size()) return std::nullopt;
-    const Cluster& cl = style_->clusters[c];
-    const auto& control = cl.shape->trajectory().control();
-    double length = 0;
-    for (std::size_t i = 1; i < control.size(); ++i)
-        length += glm::distance(cl.placement.apply(control[i]), cl.placement.apply(control[i - 1]));
-    return mirror_partner(*style_, c, 0, roots_middle(*style_, 0), kSymmetryTolerance * length);
+    return mirror_partner(*style_, c, 0, roots_middle(*style_, 0), kSymmetryTolerance * control_length(style_->clusters[c]));
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> Authoring::partners(const std::vector<std::size_t>& cs) const {
@@ -117,16 +125,10 @@ void Authoring::add(const Camera& camera, const glm::mat3& orientation, double x
     edit([&](HairStyle& s, AbsorptionMap* map) {
         std::vector<std::size_t> made{add_cluster(s, c, map)};
         if (!symmetric) return made;
-        const Cluster& added = s.clusters[made[0]];
-        const auto& control = added.shape->trajectory().control();
-        double length = 0, off = 0;  // how far its own mirror image lies from it
-        for (std::size_t i = 0; i < control.size(); ++i) {
-            if (i > 0) length += glm::distance(control[i], control[i - 1]);
-            glm::dvec3 m = control[i];
-            m.x = 2.0 * at - m.x;
-            off = std::max(off, glm::distance(m, control[i]));
-        }
-        if (off > kSymmetryTolerance * length) made.push_back(mirror_clusters(s, made, 0, at, map)[0]);
+        const Cluster& added = s.clusters[made[0]];  // a prototype: its control points are where it is
+        double off = 0;  // how far its own mirror image lies from it
+        for (const glm::dvec3& x : added.shape->trajectory().control()) off = std::max(off, 2.0 * std::abs(x.x - at));
+        if (off > kSymmetryTolerance * control_length(added)) made.push_back(mirror_clusters(s, made, 0, at, map)[0]);
         return made;
     });
 }

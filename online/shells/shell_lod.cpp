@@ -16,25 +16,6 @@ GridStride lod_stride(int level, int rows, int columns) {
     return s;
 }
 
-std::vector<int> strided(int count, int stride) {
-    std::vector<int> kept;
-    for (int i = 0; i < count; i += stride) kept.push_back(i);
-    if (count > 0 && kept.back() != count - 1) kept.push_back(count - 1);
-    return kept;
-}
-
-std::vector<std::uint32_t> grid_triangles(int rows, int columns, GridStride s) {
-    const std::vector<int> r = strided(rows, s.t), q = strided(columns, s.u);
-    std::vector<std::uint32_t> out;
-    out.reserve((r.size() - 1) * (q.size() - 1) * 6);
-    const auto id = [&](int rr, int qq) { return static_cast<std::uint32_t>(rr * columns + qq); };
-    for (std::size_t a = 0; a + 1 < r.size(); ++a)
-        for (std::size_t b = 0; b + 1 < q.size(); ++b)  // (r,q) → (r,q+1) → (r+1,q): counter-clockwise from outside
-            out.insert(out.end(), {id(r[a], q[b]), id(r[a], q[b + 1]), id(r[a + 1], q[b]), id(r[a], q[b + 1]),
-                                   id(r[a + 1], q[b + 1]), id(r[a + 1], q[b])});
-    return out;
-}
-
 LodMeshes lod_meshes(const PreparedShells& shells) {
     LodMeshes m;
     m.indices.assign(shells.indices.data(), shells.indices.data() + shells.indices.size());
@@ -45,6 +26,9 @@ LodMeshes lod_meshes(const PreparedShells& shells) {
         const int rows = L.s_t * L.mesh_t + 1, columns = L.s_u * L.mesh_u + 1;
         const std::vector<MeshRange>& layers = shells.meshes[slot];
         m.ranges[slot].resize(layers.size());
+        std::array<std::vector<std::uint32_t>, kLodLevels> coarse;  // each level's triangles, the same for every layer
+        for (int level = 1; level < kLodLevels; ++level)
+            coarse[static_cast<std::size_t>(level)] = grid_triangles(rows, columns, lod_stride(level, rows, columns));
         for (std::size_t j = 0; j < layers.size(); ++j) {
             const MeshRange& full = layers[j];
             if (full.vertex_count != rows * columns)
@@ -53,7 +37,7 @@ LodMeshes lod_meshes(const PreparedShells& shells) {
                                                      std::to_string(rows) + " x " + std::to_string(columns));
             m.ranges[slot][j][0] = full;
             for (int level = 1; level < kLodLevels; ++level) {
-                const std::vector<std::uint32_t> tri = grid_triangles(rows, columns, lod_stride(level, rows, columns));
+                const std::vector<std::uint32_t>& tri = coarse[static_cast<std::size_t>(level)];
                 MeshRange r = full;
                 r.first = static_cast<std::uint32_t>(m.indices.size());
                 r.count = static_cast<std::int32_t>(tri.size());

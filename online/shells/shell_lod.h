@@ -24,15 +24,8 @@ inline constexpr int kLodMinColumns = 8;
 // current level's edge exceeds lod_pixels: a band of 20 % in which the level stays.
 inline constexpr float kLodHysteresis = 0.8f;
 
-struct GridStride {
-    int t = 1, u = 1;  // rows and columns joined: every t-th and u-th
-};
+// Level k's stride of a rows × columns layer grid (models/generalized_disk.h grid_triangles joins it).
 GridStride lod_stride(int level, int rows, int columns);
-// The rows (or columns) a stride keeps: 0, s, 2s, …, and the last.
-std::vector<int> strided(int count, int stride);
-// The triangles of a rows × columns grid on the rows and columns `s` keeps, in layer_mesh's order and winding: at stride
-// (1, 1), layer_mesh's own indices.
-std::vector<std::uint32_t> grid_triangles(int rows, int columns, GridStride s);
 
 // Every prototype's layer meshes at each level, in one index array: level 0's ranges are the shells' own (the array
 // starts with shells.indices), the coarser levels' follow.
