@@ -231,12 +231,15 @@ int lit_rows(int rows, int step) {
 
 bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key) {
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
-                      key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.eye == eye &&
+                      key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull && key.eye == eye &&
                       key.lights_stamp == gpu.lights_stamp &&
                       key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp;
     if (same && s.reuse_lighting) return false;
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
-    const std::vector<std::string> defines = variant_defines(s);
+    std::vector<std::string> defines = variant_defines(s);
+    // Culling lights keeps each sample's estimates and its lights kept in arrays of the light count.
+    const bool cull = s.light_cull > 0.0f && gpu.light_count > 0 && gpu.light_count <= kMaxCulledLights;
+    if (cull) defines.push_back("SHELL_CULL_LIGHTS " + std::to_string(gpu.light_count));
     std::string name;
     for (const std::string& d : defines) name += d + "|";
     auto& slot = programs_[name];
@@ -251,10 +254,11 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     glUniform1i(program.uniform("u_step"), s.lighting_step);
     glUniform1i(program.uniform("u_used"), used);
     glUniform3fv(program.uniform("u_eye"), 1, &eye.x);
+    if (cull) glUniform1f(program.uniform("u_light_cull"), s.light_cull);
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, eye, gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp};
+    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, s.light_cull, eye, gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp};
     return true;
 }
 

@@ -38,6 +38,9 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
 
 inline constexpr int kLightingTexels = 8;  // RGBA texels per lighting sample: the 27 floats C_k, S_k, V and one more
                                            // (shaders/gl/shell_lighting.comp)
+// The most lights the lighting pass culls per sample (ShellSettings::light_cull): it keeps each light's estimate and
+// the lights kept in arrays of the light count, per sample; with more lights it lights every one.
+inline constexpr int kMaxCulledLights = 128;
 inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
 // Texture units: 0 the record atlas, 1 the lighting sums, 2 … 1 + kLutCount the lighting tables, then the painted
 // absorption, then the host scene's depth (shaders/gl/scene_depth.glsl).
@@ -110,6 +113,7 @@ struct LightingKey {
     bool shadows = false;
     float tangent_spread = 0.0f;
     int step = 1;
+    float light_cull = 0.0f;
     glm::vec3 eye{0.0f};
     std::uint64_t lights_stamp = 0, absorption_stamp = 0, geometry_stamp = 0;
 };

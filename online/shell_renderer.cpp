@@ -437,6 +437,21 @@ std::vector<float> ShellRenderer::read_lighting() const {
     return out;
 }
 
+std::vector<int> ShellRenderer::read_lights_lit() const {
+    const ShellGpu& g = *impl_->gpu;
+    std::vector<float> tex(static_cast<std::size_t>(g.lighting_rows) * g.clusters * kLightingTexels * 4);
+    glGetTextureImage(g.lighting.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(tex.size() * sizeof(float)), tex.data());
+    const int used = lit_rows(g.lighting_rows, timings_.lighting_step);
+    std::vector<int> out;
+    out.reserve(g.clusters * static_cast<std::size_t>(used));
+    for (std::size_t c = 0; c < g.clusters; ++c)
+        for (int r = 0; r < used; ++r) {
+            const std::size_t y = c * kLightingTexels + 29 / 4;  // float 29: texel 7's second
+            out.push_back(static_cast<int>(tex[(y * g.lighting_rows + r) * 4 + 29 % 4]));
+        }
+    return out;
+}
+
 int ShellRenderer::lighting_rows() const { return impl_->gpu->lighting_rows; }
 
 std::vector<glm::vec2> ShellRenderer::read_shadows() const {

@@ -186,6 +186,9 @@ public:
     // The lighting pass's output of the last draw: per cluster, per lighting row, the 27 sums
     // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator.
     std::vector<float> read_lighting() const;
+    // The lights that the lighting pass of the last draw lit at each sample it lit (ShellSettings::light_cull skips
+    // some; ShellTimings::lighting_step says which samples were lit): cluster by cluster, along each.
+    std::vector<int> read_lights_lit() const;
     int lighting_rows() const;
     // The shadow pass's output of the last draw that ran it: (T̃, n) per lighting sample (cluster-major,
     // as lighting_sample) and light.

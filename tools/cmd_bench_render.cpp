@@ -129,6 +129,19 @@ void add_bench_render(CLI::App& root) {
                 const coif::gl::ShellFrameTimes t = coif::gl::time_shell_frames(renderer, cam, moving, false, o->frames);
                 const std::size_t triangles_drawn = renderer.timings().triangles_drawn;
                 const auto at_level = renderer.timings().clusters_at_level;
+                double lights_lit = 0;  // per lighting sample, on average (ShellSettings::light_cull)
+                {
+                    const std::vector<int> lit = renderer.read_lights_lit();
+                    for (const int n : lit) lights_lit += n;
+                    lights_lit /= double(std::max<std::size_t>(1, lit.size()));
+                }
+                // The same preset lighting every light: what its light culling saves, in the same run.
+                double all_lights_ms = t.lighting_ms;
+                if (moving.light_cull > 0.0f) {
+                    coif::gl::ShellSettings no_cull = moving;
+                    no_cull.light_cull = 0.0f;
+                    all_lights_ms = coif::gl::time_shell_frames(renderer, cam, no_cull, false, o->frames).lighting_ms;
+                }
                 // The same preset with every cluster's full meshes: what its level of detail saves, in the same run.
                 double full_meshes_ms = t.wall_ms;
                 if (moving.lod_pixels > 0.0f) {
@@ -149,6 +162,8 @@ void add_bench_render(CLI::App& root) {
                                 {"clusters_at_level", at_level}, {"frame_ms_full_meshes", full_meshes_ms},
                                 {"frame_ms", t.wall_ms}, {"fps", 1000.0 / t.wall_ms},
                                 {"still_frame_ms", unmoved.wall_ms}, {"lighting_pass_ms", t.lighting_ms},
+                                {"light_cull", moving.light_cull}, {"lights_lit_per_sample", lights_lit},
+                                {"lighting_pass_ms_all_lights", all_lights_ms},
                                 {"shells_ms", t.shells_ms}, {"resolve_ms", t.resolve_ms}, {"full_floor_ms", floor.wall_ms},
                                 {"ratio_to_full_floor", t.wall_ms / floor.wall_ms},
                                 {"error_vs_full",
@@ -185,7 +200,8 @@ void add_bench_render(CLI::App& root) {
                     "full's shells rasterised and blended with a trivial shader. Error against full's image (coif compare's\n"
                     "appearance metrics): blurred PSNR, detail ratio, radiance ratio (lowest and highest channel), mask IoU.\n"
                     "Level of detail: the triangles drawn per frame (thousands), and the frame with every cluster's full\n"
-                    "meshes ('full mesh', the preset otherwise the same) beside it.\n");
+                    "meshes ('full mesh', the preset otherwise the same) beside it. Lights culled per lighting sample:\n"
+                    "the lights lit per sample on average ('lit'), and the lighting pass lighting every light ('all lt').\n");
         std::string last;
         for (const auto& r : rows) {
             const std::string scene_name = r["scene"].get<std::string>();
@@ -193,17 +209,19 @@ void add_bench_render(CLI::App& root) {
                 std::printf("\n%s: %zu clusters, %zu triangles, prepare %.2f s, shadow pass %.1f ms, floor of full %.1f ms\n",
                             scene_name.c_str(), r["clusters"].get<std::size_t>(), r["triangles"].get<std::size_t>(),
                             r["prepare_s"].get<double>(), r["shadow_pass_ms"].get<double>(), r["full_floor_ms"].get<double>());
-                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %6s %9s %8s %7s %11s %6s\n", "quality", "frame", "fps", "lighting",
-                            "shells", "resolve", "x floor", "still", "tris", "full mesh", "bPSNR", "detail", "radiance", "IoU");
-                std::printf("  %-7s %8s %6s %9s %8s %8s %8s %8s %6s %9s %8s %7s %11s %6s\n", "", "ms", "", "ms", "ms", "ms", "",
-                            "ms", "k", "ms", "dB", "", "", "");
+                std::printf("  %-7s %8s %6s %9s %5s %7s %8s %8s %8s %8s %6s %9s %8s %7s %11s %6s\n", "quality", "frame", "fps",
+                            "lighting", "lit", "all lt", "shells", "resolve", "x floor", "still", "tris", "full mesh", "bPSNR",
+                            "detail", "radiance", "IoU");
+                std::printf("  %-7s %8s %6s %9s %5s %7s %8s %8s %8s %8s %6s %9s %8s %7s %11s %6s\n", "", "ms", "", "ms", "", "ms",
+                            "ms", "ms", "", "ms", "k", "ms", "dB", "", "", "");
                 last = scene_name;
             }
             const auto& e = r["error_vs_full"];
             const auto rad = e["radiance_ratio"].get<std::vector<double>>();
-            std::printf("  %-7s %8.1f %6.2f %9.1f %8.1f %8.1f %8.2f %8.1f %6.0f %9.1f %8s %7.3f %5.3f-%5.3f %6.3f\n",
+            std::printf("  %-7s %8.1f %6.2f %9.1f %5.1f %7.1f %8.1f %8.1f %8.2f %8.1f %6.0f %9.1f %8s %7.3f %5.3f-%5.3f %6.3f\n",
                         r["quality"].get<std::string>().c_str(), r["frame_ms"].get<double>(), r["fps"].get<double>(),
-                        r["lighting_pass_ms"].get<double>(), r["shells_ms"].get<double>(), r["resolve_ms"].get<double>(),
+                        r["lighting_pass_ms"].get<double>(), r["lights_lit_per_sample"].get<double>(),
+                        r["lighting_pass_ms_all_lights"].get<double>(), r["shells_ms"].get<double>(), r["resolve_ms"].get<double>(),
                         r["ratio_to_full_floor"].get<double>(), r["still_frame_ms"].get<double>(),
                         r["triangles_drawn"].get<double>() / 1000.0, r["frame_ms_full_meshes"].get<double>(),
                         coif::format_metric(e["blurred_psnr_db"].get<double>(), 1).c_str(), e["detail_ratio"].get<double>(),

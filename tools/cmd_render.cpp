@@ -227,6 +227,12 @@ void add_render(CLI::App& root) {
                          scene.database_label + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
         const auto& st = renderer.stats();
+        double lights_lit = 0;  // per lighting sample, on average (ShellSettings::light_cull skips some)
+        {
+            const std::vector<int> lit = renderer.read_lights_lit();
+            for (const int n : lit) lights_lit += n;
+            lights_lit /= double(std::max<std::size_t>(1, lit.size()));
+        }
         if (o->json)
             coif::cli::print_json({{"output", o->output},
                                    {"renderer", "SATF shells"},
@@ -238,6 +244,7 @@ void add_render(CLI::App& root) {
                                    {"sectors", st.sectors},
                                    {"triangles", st.triangles},
                                    {"lights", scene.lights.size()},
+                                   {"lights_lit_per_sample", lights_lit},
                                    {"render_milliseconds", render_ms},
                                    {"tiles", renderer.timings().tiles},
                                    {"lighting_step", renderer.timings().lighting_step},
@@ -290,6 +297,9 @@ void add_render(CLI::App& root) {
             std::fprintf(stderr, "level of detail (edges within %g px): clusters at levels 0 / 1 / 2: %zu / %zu / %zu; %zu triangles drawn\n",
                          double(settings.lod_pixels), at[0], at[1], at[2], renderer.timings().triangles_drawn);
         }
+        if (settings.light_cull > 0.0f)
+            std::fprintf(stderr, "lights culled per lighting sample (light_cull %g): %.1f of %zu lit on average\n",
+                         double(settings.light_cull), lights_lit, scene.lights.size());
         if (settings.compositing == coif::gl::Compositing::exact) {
             const coif::gl::FragmentListStats fl = renderer.fragment_list_stats();
             std::fprintf(stderr, "exact compositing: %d tile(s); %llu fragments (%llu dropped), %llu pixels over the resolve's %d, "

@@ -66,10 +66,11 @@ namespace {
 // The fields a preset sets (of a ShellSettings, const or not), in one place for setting and for comparing.
 template <class Settings>
 auto preset_choices(Settings& s) {
-    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels);
+    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels, s.light_cull);
 }
 auto preset_choices(const QualityPreset& p) {
-    return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f, p.lod_pixels);
+    return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f, p.lod_pixels,
+                      p.light_cull);
 }
 }  // namespace
 
@@ -93,7 +94,7 @@ ParamTable<ShellSettings> make_table() {
     // nothing.
     Param<S> quality{"quality", ParamKind::choice, "", 0, 0, false,
                      "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
-                     "tangent_spread_deg, lod_pixels); later keys override it",
+                     "tangent_spread_deg, lod_pixels, light_cull); later keys override it",
                      {}, {}, {}, {}};
     quality.names = quality_names();
     quality.names.emplace_back("custom");
@@ -146,6 +147,10 @@ ParamTable<ShellSettings> make_table() {
                               "level of detail: draw each cluster with the coarsest mesh whose triangles' edges project "
                               "within this many pixels (0: full meshes)",
                               [](auto& s) -> auto& { return s.lod_pixels; }));
+    t.push_back(real_param<S>("light_cull", "of each lighting sample's light", 0.0, 0.5,
+                              "skip, per lighting sample, the dimmest lights whose estimated share of its light sums to "
+                              "at most this fraction (0: every light)",
+                              [](auto& s) -> auto& { return s.light_cull; }));
     return t;
 }
 

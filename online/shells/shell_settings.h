@@ -72,6 +72,12 @@ struct ShellSettings {
     // kLodLevels meshes whose longest triangle edge projects within this many pixels (with hysteresis); 0 draws the
     // full meshes. docs/renderer.md ("Level of detail") measures the cost and the error.
     float lod_pixels = 24.0f;
+    // Lights left out per lighting sample (shaders/gl/shell_lighting.comp): each light's share of the sample's light is
+    // estimated by its power times what reaches the sample (T̃ and the forward-scattered share of the shadow pass), and
+    // the dimmest lights whose estimates sum to at most this fraction of the sample's total are skipped; 0 lights every
+    // light, and so do more than 128 lights (online/shell_passes.h kMaxCulledLights). docs/renderer.md ("Lights culled
+    // per lighting sample") measures the cost and the error.
+    float light_cull = 0.05f;
 };
 // Quality presets (issue 18): named sets of the choices that trade the image against time. `full` is the reference of
 // the others: every lighting sample, two records per sector, re to its second harmonic, the fibres' measured tangents,
@@ -87,21 +93,25 @@ struct QualityPreset {
     int neighbours, fourier_order, lighting_step;
     bool one_tangent;  // light every fibre along its cluster's axis (tangent_spread 0) instead of the measured tilts
     float lod_pixels;  // ShellSettings::lod_pixels
+    float light_cull;  // ShellSettings::light_cull
 };
 inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::low, "low", "weighted blended compositing (bounded memory), one record per sector, re's first harmonic, a "
-                          "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis "
-                          "(previews, dragging)",
-     Compositing::weighted, 1, 1, 4, true, 48.0f},
+                          "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis, "
+                          "coarse meshes, the dimmest lights carrying 20 % of each sample's light skipped (previews, dragging)",
+     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f},
     {Quality::medium, "medium",
      "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples where the "
-     "clusters are smooth",
-     Compositing::exact, 1, 1, 4, false, 32.0f},
+     "clusters are smooth, coarser meshes, the dimmest lights carrying 10 % of each sample's light skipped",
+     Compositing::exact, 1, 1, 4, false, 32.0f, 0.1f},
     {Quality::high, "high",
-     "exact compositing, two records per sector, half the lighting samples where the clusters are smooth (the default)",
-     Compositing::exact, 2, 2, 2, false, 24.0f},
-    {Quality::full, "full", "exact compositing, two records per sector, every lighting sample: the reference of the others",
-     Compositing::exact, 2, 2, 1, false, 0.0f},
+     "exact compositing, two records per sector, half the lighting samples where the clusters are smooth, meshes "
+     "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped (the "
+     "default)",
+     Compositing::exact, 2, 2, 2, false, 24.0f, 0.05f},
+    {Quality::full, "full", "exact compositing, two records per sector, every lighting sample, full meshes, every light: the "
+                            "reference of the others",
+     Compositing::exact, 2, 2, 1, false, 0.0f, 0.0f},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);

@@ -13,7 +13,12 @@
 // sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV); the 29th is
 // the factor by which the lights' angles to the axis lengthen their paths across the own cluster in the
 // Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each light, averaged with the
-// weights lum(w_j); texel 7's other floats are 0.
+// weights lum(w_j); the 30th the number of lights lit (all of them unless culled, below); texel 7's last two are 0.
+//
+// With SHELL_CULL_LIGHTS N (the light count, up to kMaxCulledLights; ShellSettings::light_cull > 0) each sample lights only the lights that
+// carry its light: light j's share is estimated as b_j = |lum(L_j)| ∫G_j (T̃_j + d_f max_c(T_f − T̃_j)), its power times
+// what reaches the sample unscattered and forward-scattered (srbf_shadowed.glsl, at the axis tangent), and the
+// dimmest lights whose estimates sum to at most u_light_cull Σ b are skipped. The shadow AOV still counts every light.
 #include "shaders/gl/shell_light.glsl"
 #include "shaders/lighting/own_cluster.glsl"
 
@@ -27,6 +32,9 @@ uniform int u_rows;         // lighting samples per cluster
 uniform int u_step;         // every u_step-th of them is lit (ShellSettings::lighting_step), u_used per cluster,
 uniform int u_used;         // written to the first u_used texels of the cluster's rows
 uniform vec3 u_eye;
+#ifdef SHELL_CULL_LIGHTS
+uniform float u_light_cull;  // ShellSettings::light_cull
+#endif
 
 void main() {
     int invocation = int(gl_GlobalInvocationID.x);
@@ -55,14 +63,69 @@ void main() {
     vec3 ta = s.tilt_a.xyz;
     vec3 tb = s.tilt_b.xyz;
     shell_fibre_tilts(T, r0, V, tm, ta, tb);
+#ifdef SHELL_CULL_LIGHTS
+    float estimate[SHELL_CULL_LIGHTS];
+    float estimated = 0.0;
+    for (int j = 0; j < SHELL_CULL_LIGHTS; ++j) {
+        vec2 sh = u_shadows != 0 ? shadows[i * SHELL_CULL_LIGHTS + j] : vec2(1.0, 0.0);
+        vec4 dl = lights[j].direction_lambda;
+        float lum = dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722));
+        visible += lum * sh.x;
+        total += lum;
+        float reach = sh.x;
+        if (SRBF_MULTIPLE != 0 && sh.y > 0.0) {
+            vec3 a_f = fetch_ms_forward(safe_asin(dot(normalize(dl.xyz), T)), hp.sigma_a).rgb;
+            vec3 T_f = exp(-sh.y * (vec3(1.0) - a_f));
+            reach += u_d_f * max(max(max(T_f.x, T_f.y), T_f.z) - sh.x, 0.0);
+        }
+        estimate[j] = abs(lum) * srbf_integral(dl.w) * reach;
+        estimated += estimate[j];
+    }
+    // The lights below a threshold are skipped: the highest threshold under which the estimates sum to at most
+    // u_light_cull of the whole, found by bisection (20 halvings of [0, the brightest]; the sum below `low` always
+    // stays within the bound). A light whose estimate is 0 adds nothing (no power, or no light reaches the sample).
+    float low = 0.0;
+    float high = 0.0;
+    for (int j = 0; j < SHELL_CULL_LIGHTS; ++j) high = max(high, estimate[j]);
+    for (int it = 0; it < 20; ++it) {
+        float mid = 0.5 * (low + high);
+        float below = 0.0;
+        for (int j = 0; j < SHELL_CULL_LIGHTS; ++j) below += estimate[j] < mid ? estimate[j] : 0.0;
+        if (below <= u_light_cull * estimated)
+            low = mid;
+        else
+            high = mid;
+    }
+    int kept[SHELL_CULL_LIGHTS];
+    int kept_count = 0;
+    float kept_estimate = 0.0;
+    for (int j = 0; j < SHELL_CULL_LIGHTS; ++j) {
+        if (estimate[j] >= low && estimate[j] > 0.0) {
+            kept[kept_count] = j;
+            ++kept_count;
+            kept_estimate += estimate[j];
+        }
+    }
+    // The kept lights stand for the skipped ones too: scaled by Σ b over Σ b kept (at most 1 / (1 − u_light_cull)).
+    float stand_in = kept_estimate > 0.0 ? estimated / kept_estimate : 1.0;
+    float unused_visible = 0.0;
+    float unused_total = 0.0;
+#endif
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
         vec3 Tq;
         vec3 rq;
         fibre_tangent_of(T, r0, tm, ta, tb, q, SHELL_TANGENTS, Tq, rq);
         SrbfPoint p = srbf_point(hp, V, Tq, rq);
+#ifdef SHELL_CULL_LIGHTS
+        for (int m = 0; m < kept_count; ++m) {
+            int j = kept[m];
+            vec2 sh = u_shadows != 0 ? shadows[i * SHELL_CULL_LIGHTS + j] : vec2(1.0, 0.0);
+            vec3 wj = shell_light_weight(p, j, sh, unused_visible, unused_total) * (stand_in / float(SHELL_TANGENTS));
+#else
         for (int j = 0; j < u_light_count; ++j) {
             vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
             vec3 wj = shell_light_weight(p, j, sh, visible, total) * (1.0 / float(SHELL_TANGENTS));
+#endif
             vec3 l = lights[j].direction_lambda.xyz;
             float psi = sector_azimuth(l, T, r0);
             float lp = shell_light_spread(j, T);
@@ -86,7 +149,11 @@ void main() {
     }
     v[27] = total > 0.0 ? visible / total : 1.0;
     v[28] = own_norm > 0.0 ? own_weight / own_norm : 1.0;
-    v[29] = 0.0;
+#ifdef SHELL_CULL_LIGHTS
+    v[29] = float(kept_count);
+#else
+    v[29] = float(u_light_count);
+#endif
     v[30] = 0.0;
     v[31] = 0.0;
     for (int m = 0; m < 8; ++m)

@@ -14,7 +14,9 @@
 #include "online/gl_context.h"
 #include "models/style_strands.h"
 #include "online/shells/shadow_grid.h"
+#include "online/shell_passes.h"
 #include "online/shell_renderer.h"
+#include "shaders/envmap.h"
 #include "shaders/hair_parameters.h"
 #include "shaders/glsl_prelude.h"
 #include "shaders/lighting.h"
@@ -551,6 +553,75 @@ TEST(ShellRenderer, LightingStepLightsEveryKthSampleAsStepOneDoes) {
     }
     s.lighting_step = 3;  // 3 does not divide the 32 intervals
     EXPECT_THROW(renderer.draw(camera, s), Error);
+}
+
+// ShellSettings::light_cull: each lighting sample skips the dimmest lights whose estimates (power × what reaches the
+// sample) sum to at most light_cull of the whole, and the kept lights stand in for them, scaled by Σ all / Σ kept.
+// Two lights carry the light; six dim ones in front of them in the list (each with 1e-3 of the first's radiance)
+// carry 0.5 % of it together. With light_cull 0.05 every sample lights the two alone, and its sums are those of the two
+// lights without the dim ones times that scale (to float rounding, 1e-5: the same lights summed in the same order);
+// with light_cull 0 it lights all eight, and with more lights than it culls, all of them. Shadows off: nothing is
+// occluded, so each estimate is the light's power.
+TEST(ShellRenderer, LightCullSkipsTheDimLightsOfEachSampleAndScalesTheKeptOnes) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    const std::vector<SrbfLight> two = two_lights();
+    std::vector<SrbfLight> all;
+    for (int k = 0; k < 6; ++k) {
+        SrbfLight d;
+        d.L = two[0].L * 1e-3f;
+        d.omega = glm::normalize(glm::vec3(std::cos(float(k)), 0.3f, std::sin(float(k))));
+        d.lambda = 0.5f;
+        all.push_back(d);
+    }
+    all.insert(all.end(), two.begin(), two.end());
+    const auto estimate = [](const SrbfLight& l) {
+        return std::abs(glm::dot(l.L, glm::vec3(0.2126f, 0.7152f, 0.0722f))) * glsl::srbf_integral(l.lambda);
+    };
+    double whole = 0, kept = 0;
+    for (const SrbfLight& l : all) whole += estimate(l);
+    for (const SrbfLight& l : two) kept += estimate(l);
+    const double scale = whole / kept;
+    ASSERT_GT(scale, 1.004);  // the dim lights carry 0.5 %: below the cull's 5 %
+    ASSERT_LT(scale, 1.006);
+
+    const Camera camera = front_camera(renderer);
+    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
+    target.bind();
+    gl::ShellSettings s;
+    s.lighting_step = 1;
+    s.shadows = false;
+    renderer.set_lights(two);
+    renderer.draw(camera, s);
+    const std::vector<float> two_sums = renderer.read_lighting();
+    renderer.set_lights(all);
+    s.light_cull = 0.0f;
+    renderer.draw(camera, s);
+    const std::vector<float> all_sums = renderer.read_lighting();
+    for (const int n : renderer.read_lights_lit()) ASSERT_EQ(n, 8);
+    s.light_cull = 0.05f;
+    renderer.draw(camera, s);
+    EXPECT_TRUE(renderer.timings().lighting_ran);  // a new light_cull lights again
+    const std::vector<float> culled = renderer.read_lighting();
+    for (const int n : renderer.read_lights_lit()) ASSERT_EQ(n, 2);
+    ASSERT_EQ(culled.size(), two_sums.size());
+    double c0_all = 0, c0_culled = 0;
+    for (std::size_t i = 0; i < culled.size(); ++i) {
+        const double expected = scale * two_sums[i];
+        EXPECT_NEAR(culled[i], expected, 1e-5 * std::max(1.0, std::abs(expected))) << i;
+        if (i % 27 < 3) {
+            c0_all += all_sums[i];
+            c0_culled += culled[i];
+        }
+    }
+    // Against every light: the dim lights' own share, which the scale stands in for on average (here within 1 %).
+    EXPECT_NEAR(c0_culled / c0_all, 1.0, 0.01);
+    // More lights than the pass culls (kMaxCulledLights): every one is lit.
+    std::vector<SrbfLight> many(gl::kMaxCulledLights + 1, all.front());
+    many.push_back(two[0]);
+    renderer.set_lights(many);
+    renderer.draw(camera, s);
+    for (const int n : renderer.read_lights_lit()) ASSERT_EQ(n, static_cast<int>(many.size()));
 }
 
 TEST(ShellRenderer, DefaultLightsShowLitHair) {
