@@ -93,6 +93,17 @@ Texture make_texture_2d(GLenum internal_format, int width, int height, std::opti
     return t;
 }
 
+Texture make_texture_2d_array(GLenum internal_format, int width, int height, int layers) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    Texture t(id);
+    check_side("2D", GL_MAX_TEXTURE_SIZE, {width, height});
+    check_side("array", GL_MAX_ARRAY_TEXTURE_LAYERS, {layers});
+    glTextureStorage3D(id, 1, internal_format, width, height, layers);
+    check_allocation("a " + std::to_string(width) + "x" + std::to_string(height) + "x" + std::to_string(layers) + " array texture");
+    return t;
+}
+
 Texture make_texture_3d(GLenum internal_format, glm::ivec3 size, std::optional<Sampling> sampling) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_3D, 1, &id);

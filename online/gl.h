@@ -68,6 +68,8 @@ struct Sampling {
 // Immutable storage of one level; `sampling` set when given (else GL's defaults, for image-only use).
 Texture make_texture_2d(GLenum internal_format, int width, int height, std::optional<Sampling> sampling = std::nullopt);
 Texture make_texture_3d(GLenum internal_format, glm::ivec3 size, std::optional<Sampling> sampling = std::nullopt);
+// A 2D array texture of `layers` layers (image-only use: GL's default sampling).
+Texture make_texture_2d_array(GLenum internal_format, int width, int height, int layers);
 // Sets the filter and wrap of `texture` (2D or 3D).
 void set_sampling(const Texture& texture, Sampling sampling);
 

@@ -282,7 +282,9 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
     // The fragment shader of each compositing: exact appends to the lists, weighted accumulates, the others blend.
     const char* fragment = mode == Compositing::exact      ? "shaders/gl/shell_abuffer.frag"
                            : mode == Compositing::weighted ? "shaders/gl/shell_weighted.frag"
+                           : mode == Compositing::kbuffer  ? "shaders/gl/shell_kbuffer.frag"
                                                            : "shaders/gl/shell.frag";
+    if (mode == Compositing::kbuffer) defines.push_back("KBUFFER_SLOTS " + std::to_string(s.kbuffer_slots));
     std::string key = fragment;
     for (const std::string& d : defines) key += "|" + d;
     auto& slot = programs_[key];
@@ -321,19 +323,46 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                         const ShellSettings& s, bool floor_only, const LightingPass& lighting) {
     const DiskLayout& L = gpu.layout;
     const bool exact = !floor_only && s.compositing == Compositing::exact;
-    const bool weighted = !floor_only && s.compositing == Compositing::weighted;
+    const bool kbuffer = !floor_only && s.compositing == Compositing::kbuffer;
+    const bool depth_pass = kbuffer && d.phase == ShellDraw::Phase::depth;  // the k-buffer's first pass
+    // The weighted compositing, and the k-buffer's tail, which is the same blend.
+    const bool weighted = !floor_only && (s.compositing == Compositing::weighted || kbuffer);
     const bool own_targets = exact || weighted;  // drawn into targets of the viewport's size, then resolved into the frame
+    if (kbuffer && d.phase == ShellDraw::Phase::all)
+        throw Error::parameter("compositing", "the k-buffer draws a frame in a depth pass and a shading pass");
     if (exact) make_lists();
     if (weighted && !weighted_) weighted_ = std::make_unique<WeightedBlend>();
     const FrameTarget& t = d.target;
     const int width = t.viewport.z, height = t.viewport.w;
     const DepthTest depth = floor_only || t.scene_depth == 0 ? DepthTest::none : t.depth_test;
-    const Program& prog = floor_only ? floor_ : shading_program(s.compositing, s, gpu.lighting_rows, L, depth);
+    const Program* program = &floor_;
+    if (depth_pass) {
+        const std::vector<std::string> defines{"KBUFFER_SLOTS " + std::to_string(s.kbuffer_slots),
+                                               "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};
+        std::string key;
+        for (const std::string& x : defines) key += x + "|";
+        auto& slot = depth_programs_[key];
+        if (!slot)
+            slot = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell.vert", "shaders/gl/shell_kbuffer_depth.frag"},
+                                             defines);
+        program = slot.get();
+    } else if (!floor_only) {
+        program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth);
+    }
+    const Program& prog = *program;
     prog.use();
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
     const glm::mat4 vp = pixel_shift(d.jitter, width, height) * view.projection * view.view;
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
-    if (!floor_only) {
+    if (depth_pass) {
+        glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
+        glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
+        if (depth != DepthTest::none) {
+            glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
+            glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
+            glUniform2i(prog.uniform("u_scene_depth_offset"), t.viewport.x, t.viewport.y);
+        }
+    } else if (!floor_only) {
         glBindTextureUnit(0, gpu.atlas.id());
         glBindTextureUnit(1, gpu.lighting.id());
         glUniform1i(prog.uniform("u_records"), 0);
@@ -368,8 +397,10 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     std::vector<char> visible(shells.clusters(), 1);
     const bool lod = !floor_only && s.lod_pixels > 0.0f;
     std::vector<int>& level = d.levels ? *d.levels : level_;
-    if (level.size() != shells.clusters() || (lod && d.detail == ShellDraw::Detail::fresh)) level.assign(shells.clusters(), 0);
-    const bool pick = lod && d.detail != ShellDraw::Detail::hold;
+    // The k-buffer's shading pass draws the meshes its depth pass drew.
+    const ShellDraw::Detail detail = d.phase == ShellDraw::Phase::shade ? ShellDraw::Detail::hold : d.detail;
+    if (level.size() != shells.clusters() || (lod && detail == ShellDraw::Detail::fresh)) level.assign(shells.clusters(), 0);
+    const bool pick = lod && detail != ShellDraw::Detail::hold;
     if (s.cull || weighted || pick) {
         if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
         const std::vector<ClusterBox> boxes = cluster_boxes(shells, prototype_boxes_);
@@ -384,7 +415,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                     farthest = std::max(farthest, e);
                 }
         }
-        if (weighted) {
+        if (weighted && !depth_pass) {
             // A box's nearest corner can be nearer than any fragment (or behind the eye, within the box): clamped at 0.
             nearest = farthest > 0.0f ? std::max(0.0f, nearest) : 0.0f;
             glUniform2f(prog.uniform("u_depth_range"), nearest, 1.0f / std::max(farthest - nearest, 1e-6f));
@@ -407,9 +438,19 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     } else if (weighted) {  // accumulate every fragment, in any order (online/weighted_blend.h)
         if (d.first) {
             glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer_);
-            weighted_->begin(width, height);
+            weighted_->begin(width, height, kbuffer ? s.kbuffer_slots : 0);
         } else {
             weighted_->bind();
+        }
+        if (kbuffer) {
+            weighted_->bind_slots();
+            glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
+            if (depth_pass) {  // depths alone: no colour output, no blending
+                glDisable(GL_BLEND);
+                glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            } else {
+                glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);  // the depth pass's slots
+            }
         }
     } else {
         glViewport(t.viewport.x, t.viewport.y, width, height);
@@ -461,6 +502,12 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
+    if (depth_pass) {
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glDepthMask(GL_TRUE);
+        return 0;
+    }
     double resolve_ms = 0;
     if (own_targets && d.last) {  // the lists' per-pixel sort and "over", or the weighted mean, into the caller's framebuffer
         if (exact) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -156,6 +156,11 @@ struct ShellDraw {
     enum class Detail { follow, fresh, hold };
     Detail detail = Detail::follow;
     std::vector<int>* levels = nullptr;
+    // The k-buffer compositing draws every instance of a frame twice: first their depths into its slots (depth), then
+    // shaded (shade); `first` begins the frame in the depth pass and `last` resolves it in the shading pass. The other
+    // compositings draw once (all).
+    enum class Phase { all, depth, shade };
+    Phase phase = Phase::all;
 };
 
 class ShellsPass {
@@ -190,6 +195,7 @@ private:
     const Program& shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
                                    DepthTest depth);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
+    std::map<std::string, std::unique_ptr<Program>> depth_programs_;  // the k-buffer's depth pass, by its defines
     std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use
     std::unique_ptr<FragmentLists> lists_;
     std::unique_ptr<WeightedBlend> weighted_;  // the weighted compositing's targets (made on first use)

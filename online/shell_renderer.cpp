@@ -58,6 +58,7 @@ struct InstanceLights {
 
 struct ShellRenderer::Impl {
     ShadowPass shadow;
+    double depth_pass_ms = 0;  // the k-buffer's depth passes of this frame so far (timed), added to its shells' time
     LightingPass lighting;
     ShellsPass shells_pass;
     PreparedShells shells;
@@ -325,6 +326,9 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
     const glm::mat4 identity(1.0f);
     if (instances.empty()) instances = std::span<const glm::mat4>(&identity, 1);
     if (m.instances.size() < instances.size()) m.instances.resize(instances.size());
+    std::vector<FrameView> views;  // each instance's view of its own space, its scale and the lights turned into it
+    std::vector<float> scales;
+    std::vector<std::vector<SrbfLight>> turned_lights;
     for (std::size_t i = 0; i < instances.size(); ++i) {
         const glm::mat4& M = instances[i];
         // Rigid with a uniform scale s: the columns of the linear part are orthogonal and of one length.
@@ -339,38 +343,73 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
         FrameView v = FrameView::of(view * M, projection);
         std::vector<SrbfLight> turned(lights.begin(), lights.end());
         for (SrbfLight& l : turned) l.omega = glm::normalize(glm::transpose(R) * l.omega);
-        InstanceLights& il = m.instances[i];
-        if (il.lighting.id() == 0)
-            il.lighting = make_texture_2d(GL_RGBA32F, m.gpu->lighting_rows, static_cast<int>(m.gpu->clusters * kLightingTexels),
-                                          Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
-        m.swap(il);
-        if (il.lights != turned) {
-            m.gpu->set_lights(turned);
-            il.lights = turned;
-            m.shadows_valid = false;
-        }
-        ShellDraw d;
-        d.target = target;
-        d.first = i == 0;
-        d.last = i + 1 == instances.size();
-        d.distance_scale = scale;
-        d.levels = &il.levels;
-        try {
-            passes(v, d, settings, false);
-        } catch (...) {
-            m.swap(il);
-            throw;
-        }
-        m.swap(il);
+        views.push_back(v);
+        scales.push_back(scale);
+        turned_lights.push_back(std::move(turned));
     }
+    // The k-buffer draws every instance's depths before any is shaded (its slots must hold the frame's nearest).
+    const bool kbuffer = settings.compositing == Compositing::kbuffer;
+    for (const ShellDraw::Phase phase : kbuffer ? std::vector<ShellDraw::Phase>{ShellDraw::Phase::depth, ShellDraw::Phase::shade}
+                                                : std::vector<ShellDraw::Phase>{ShellDraw::Phase::all})
+        for (std::size_t i = 0; i < instances.size(); ++i) {
+            InstanceLights& il = m.instances[i];
+            if (il.lighting.id() == 0)
+                il.lighting = make_texture_2d(GL_RGBA32F, m.gpu->lighting_rows, static_cast<int>(m.gpu->clusters * kLightingTexels),
+                                              Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+            m.swap(il);
+            if (il.lights != turned_lights[i]) {
+                m.gpu->set_lights(turned_lights[i]);
+                il.lights = turned_lights[i];
+                m.shadows_valid = false;
+            }
+            ShellDraw d;
+            d.target = target;
+            d.first = i == 0 && phase != ShellDraw::Phase::shade;
+            d.last = i + 1 == instances.size() && phase != ShellDraw::Phase::depth;
+            d.distance_scale = scales[i];
+            d.levels = &il.levels;
+            d.phase = phase;
+            try {
+                passes(views[i], d, settings, false);
+            } catch (...) {
+                m.swap(il);
+                throw;
+            }
+            m.swap(il);
+        }
     finish_frame(settings, false);
 }
 
 void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const ShellSettings& s, bool floor_only) {
     Impl& m = *impl_;
+    if (!floor_only && s.compositing == Compositing::kbuffer && draw.phase == ShellDraw::Phase::all) {  // one instance
+        ShellDraw depth = draw;
+        depth.phase = ShellDraw::Phase::depth;
+        depth.last = false;
+        passes(view, depth, s, false);
+        ShellDraw shade = draw;
+        shade.phase = ShellDraw::Phase::shade;
+        shade.first = false;
+        passes(view, shade, s, false);
+        return;
+    }
     ShellDraw d = draw;
     d.detail = m.detail;
     ShellGpu& gpu = *m.gpu;
+    if (!floor_only && d.phase == ShellDraw::Phase::depth) {  // the k-buffer's depths: no shadows or lighting needed
+        if (d.first) m.depth_pass_ms = 0;
+        if (s.timed) glFinish();
+        const auto t0 = Clock::now();
+        ShellSettings lit = s;
+        lit.lighting_step = m.lighting_step(s.lighting_step);
+        m.shells_pass.draw(gpu, m.shells, view, d, lit, false, m.lighting);
+        if (s.timed) {
+            glFinish();
+            m.depth_pass_ms += wall_ms_since(t0);
+        }
+        check_errors("ShellRenderer::draw (k-buffer depths)");
+        return;
+    }
     // Shadow pass: only when the lights, the fibre radius or the samples it marches changed. It marches the samples the
     // lighting pass lights (its step), and every sample for the per-fragment lighting, which reads them all.
     const float radius = fiber_radius(s);
@@ -408,6 +447,10 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     if (s.timed) {
         glFinish();
         timings_.shells_wall_ms = wall_ms_since(t_pass);
+        if (d.phase == ShellDraw::Phase::shade && d.last) {  // the k-buffer's depth passes are part of the shells
+            timings_.shells_wall_ms += m.depth_pass_ms;
+            m.depth_pass_ms = 0;
+        }
     }
     check_errors("ShellRenderer::draw");
 }

@@ -28,6 +28,7 @@ struct Row {
     std::string name;
     coif::gl::Compositing mode;
     int samples;
+    int slots = 0;  // the k-buffer's
 };
 
 void add_bench_compositing(CLI::App& root) {
@@ -38,8 +39,9 @@ void add_bench_compositing(CLI::App& root) {
         "Error and cost of the shell renderer's compositing modes (004 eq. 14, DESIGN.md decision 4)\n"
         "Captures every shell fragment of the view in per-pixel lists (single sample), composites them exactly on the\n"
         "CPU (per pixel sorted by eye distance, \"over\" back to front, double precision), and compares each mode's\n"
-        "image with it: sorted (clusters back to front), unsorted, exact (the lists sorted on the GPU) and weighted\n"
-        "(weighted blended, bounded memory), at 1 sample, then sorted at --msaa samples (MSAA also changes edge coverage,\n"
+        "image with it: sorted (clusters back to front), unsorted, exact (the lists sorted on the GPU), weighted\n"
+        "(weighted blended, bounded memory) and the k-buffer with k = 2, 4, 8, 16 (the nearest k fragments exact, the\n"
+        "rest weighted blended; bounded memory), at 1 sample, then sorted at --msaa samples (MSAA also changes edge coverage,\n"
         "which the 1-sample reference does not have).\n"
         "PSNR on linear RGB, peak = 99th percentile of the reference's largest channel on the hair pixels (those with\n"
         "a fragment); wall time of the shells pass with its compositing and of the exact or weighted resolve alone (each\n"
@@ -74,6 +76,7 @@ void add_bench_compositing(CLI::App& root) {
                                  {"unsorted", coif::gl::Compositing::unsorted, 1},
                                  {"exact (GPU lists)", coif::gl::Compositing::exact, 1},
                                  {"weighted", coif::gl::Compositing::weighted, 1}};
+        for (const int k : {2, 4, 8, 16}) rows.push_back({"kbuffer k=" + std::to_string(k), coif::gl::Compositing::kbuffer, 1, k});
         if (o->msaa > 1) rows.push_back({"sorted", coif::gl::Compositing::sorted, o->msaa});
         nlohmann::ordered_json out = {
             {"renderer", scene.context->renderer()}, {"width", cam.width}, {"height", cam.height},
@@ -87,6 +90,7 @@ void add_bench_compositing(CLI::App& root) {
             coif::gl::ShellSettings s = base;
             s.compositing = row.mode;
             s.samples = row.samples;
+            if (row.slots > 0) s.kbuffer_slots = row.slots;
             s.timed = true;  // wall-clock per pass, each waited for
             settings.push_back(s);
             targets.push_back(std::make_unique<coif::gl::RenderTarget>(coif::gl::camera_target(cam, s.samples)));

@@ -16,7 +16,8 @@ int supersampling(const ShellSettings& settings) {
 
 namespace {
 // Every compositing mode, in the enum's order (the parameters file's choice index is the enum's value).
-constexpr Compositing kCompositings[] = {Compositing::sorted, Compositing::unsorted, Compositing::exact, Compositing::weighted};
+constexpr Compositing kCompositings[] = {Compositing::sorted, Compositing::unsorted, Compositing::exact, Compositing::weighted,
+                                         Compositing::kbuffer};
 }  // namespace
 
 const char* compositing_name(Compositing c) {
@@ -25,6 +26,7 @@ const char* compositing_name(Compositing c) {
         case Compositing::unsorted: return "unsorted";
         case Compositing::exact: return "exact";
         case Compositing::weighted: return "weighted";
+        case Compositing::kbuffer: return "kbuffer";
     }
     return "?";
 }
@@ -38,7 +40,7 @@ std::vector<std::string> compositing_names() {
 Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place) {
     for (Compositing c : kCompositings)
         if (text == compositing_name(c)) return c;
-    throw Error(file, place, "'" + text + "' is not sorted, unsorted, exact or weighted");
+    throw Error(file, place, "'" + text + "' is not sorted, unsorted, exact, weighted or kbuffer");
 }
 
 const QualityPreset& quality_preset(Quality q) {
@@ -115,7 +117,8 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(int_param<S>("debug", 0, 4, "0 shaded, 1 alpha only, 2 unlit re, 3 lighting C_0 alpha, 4 shadow AOV",
                              [](auto& s) -> auto& { return s.debug; }));
     Param<S> compositing{"compositing", ParamKind::choice, "", 0, 0, false,
-                         "exact (per-pixel fragment lists), weighted (weighted blended, bounded memory), sorted (clusters back to front) or unsorted",
+                         "exact (per-pixel fragment lists), weighted (weighted blended, bounded memory), kbuffer (the nearest kbuffer_slots "
+                         "fragments exact, the rest weighted blended; bounded memory), sorted (clusters back to front) or unsorted",
                          {}, {}, {}, {}};
     compositing.names = compositing_names();
     compositing.get = [](const S& s, int) { return static_cast<double>(s.compositing); };
@@ -147,6 +150,9 @@ ParamTable<ShellSettings> make_table() {
                               "level of detail: draw each cluster with the coarsest mesh whose triangles' edges project "
                               "within this many pixels (0: full meshes)",
                               [](auto& s) -> auto& { return s.lod_pixels; }));
+    t.push_back(int_param<S>("kbuffer_slots", 1, kMaxKBufferSlots,
+                             "kbuffer compositing: the nearest fragments of each pixel composited exactly",
+                             [](auto& s) -> auto& { return s.kbuffer_slots; }));
     t.push_back(real_param<S>("light_cull", "of each lighting sample's light", 0.0, 0.5,
                               "skip, per lighting sample, the dimmest lights whose estimated share of its light sums to "
                               "at most this fraction (0: every light)",

@@ -15,15 +15,17 @@
 namespace coif::gl {
 
 inline constexpr int kMaxShellNeighbours = 4;  // records per sector kept for the GPU
+inline constexpr int kMaxKBufferSlots = 16;    // ShellSettings::kbuffer_slots
 
 // How the shells are composited (docs/renderer.md decision 4): sorted (clusters back to front, blended), unsorted (blended
 // in the style's order), exact (per-pixel fragment lists, sorted), weighted (weighted blended order-independent
-// transparency: bounded memory, online/weighted_blend.h). New modes go at the end: the enum's value is the parameters
-// table's choice index.
-enum class Compositing { sorted, unsorted, exact, weighted };
+// transparency: bounded memory, online/weighted_blend.h), kbuffer (the nearest ShellSettings::kbuffer_slots fragments of
+// each pixel composited exactly, the ones behind them weighted-blended: bounded memory). New modes go at the end: the
+// enum's value is the parameters table's choice index.
+enum class Compositing { sorted, unsorted, exact, weighted, kbuffer };
 const char* compositing_name(Compositing c);
 std::vector<std::string> compositing_names();  // every mode's, in the enum's order (command lines' choices)
-// "sorted" | "unsorted" | "exact" | "weighted"; anything else throws coif::Error(file, place, …).
+// "sorted" | "unsorted" | "exact" | "weighted" | "kbuffer"; anything else throws coif::Error(file, place, …).
 Compositing parse_compositing(const std::string& text, const std::string& file, const std::string& place);
 
 struct ShellSettings {
@@ -78,6 +80,9 @@ struct ShellSettings {
     // light, and so do more than 128 lights (online/shell_passes.h kMaxCulledLights). docs/renderer.md ("Lights culled
     // per lighting sample") measures the cost and the error.
     float light_cull = 0.05f;
+    // The k-buffer compositing's slots per pixel (Compositing::kbuffer, online/weighted_blend.h): its k nearest fragments
+    // are composited exactly, 1..kMaxKBufferSlots. docs/renderer.md ("Decision 4") measures the cost and the error.
+    int kbuffer_slots = 8;
 };
 // Quality presets (issue 18): named sets of the choices that trade the image against time. `full` is the reference of
 // the others: every lighting sample, two records per sector, re to its second harmonic, the fibres' measured tangents,
@@ -126,7 +131,9 @@ std::optional<Quality> quality_of(const ShellSettings& settings);
 
 // Whether a compositing draws into single-sample targets of its own (exact's lists, weighted's sums), which
 // ShellRenderer::render antialiases by supersampling; the blended modes draw into the frame and use its MSAA.
-inline bool draws_single_sample(Compositing c) { return c == Compositing::exact || c == Compositing::weighted; }
+inline bool draws_single_sample(Compositing c) {
+    return c == Compositing::exact || c == Compositing::weighted || c == Compositing::kbuffer;
+}
 // The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
 // 1..4, for the exact and weighted compositings (the blended modes use MSAA: 1).
 int supersampling(const ShellSettings& settings);
