@@ -397,7 +397,11 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     d.detail = m.detail;
     ShellGpu& gpu = *m.gpu;
     if (!floor_only && d.phase == ShellDraw::Phase::depth) {  // the k-buffer's depths: no shadows or lighting needed
-        if (d.first) m.depth_pass_ms = 0;
+        if (d.first) {  // the frame's counts are the shading passes' (which begin no frame: they add to these)
+            m.depth_pass_ms = 0;
+            timings_.clusters_drawn = timings_.triangles_drawn = 0;
+            timings_.clusters_at_level = {};
+        }
         if (s.timed) glFinish();
         const auto t0 = Clock::now();
         ShellSettings lit = s;
@@ -441,7 +445,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     timings_.resolve_wall_ms = m.shells_pass.draw(gpu, m.shells, view, d, lit, floor_only, m.lighting);
     timings_.clusters_drawn = (d.first ? 0 : timings_.clusters_drawn) + m.shells_pass.clusters_drawn();
     timings_.triangles_drawn = (d.first ? 0 : timings_.triangles_drawn) + m.shells_pass.triangles_drawn();
-    if (d.first) timings_.clusters_at_level = {};
+    if (d.first) timings_.clusters_at_level = {};  // (the k-buffer's depth pass cleared them)
     for (int k = 0; k < kLodLevels; ++k)
         timings_.clusters_at_level[static_cast<std::size_t>(k)] += m.shells_pass.clusters_at_level()[static_cast<std::size_t>(k)];
     if (s.timed) {

@@ -188,7 +188,9 @@ void ShellOptions::add_to(CLI::App* app) {
     app->add_option("--compositing", compositing,
                     "exact (per-pixel fragment lists sorted on the GPU; --samples supersamples it: the default), weighted "
                     "(weighted blended order-independent transparency: bounded memory, no order; supersampled as exact), "
-                    "sorted (clusters back to front, blended; MSAA applies), or unsorted; overrides the --params key")
+                    "kbuffer (each pixel's nearest fragments exact, --params kbuffer_slots of them, 8 by default, the rest "
+                    "weighted blended behind them: bounded memory; supersampled as exact), sorted (clusters back to front, "
+                    "blended; MSAA applies), or unsorted; overrides the --params key")
         ->check(CLI::IsMember(gl::compositing_names()));
     app->add_option("--radius", radius,
                     "Fibre radius in scene units, as coif reference --radius: the strand lines' pixel coverage 2r/pixel, and "

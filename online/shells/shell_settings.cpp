@@ -68,11 +68,12 @@ namespace {
 // The fields a preset sets (of a ShellSettings, const or not), in one place for setting and for comparing.
 template <class Settings>
 auto preset_choices(Settings& s) {
-    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels, s.light_cull);
+    return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels, s.light_cull,
+                    s.kbuffer_slots);
 }
 auto preset_choices(const QualityPreset& p) {
     return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f, p.lod_pixels,
-                      p.light_cull);
+                      p.light_cull, p.kbuffer_slots);
 }
 }  // namespace
 
@@ -96,7 +97,7 @@ ParamTable<ShellSettings> make_table() {
     // nothing.
     Param<S> quality{"quality", ParamKind::choice, "", 0, 0, false,
                      "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
-                     "tangent_spread_deg, lod_pixels, light_cull); later keys override it",
+                     "tangent_spread_deg, lod_pixels, light_cull, kbuffer_slots); later keys override it",
                      {}, {}, {}, {}};
     quality.names = quality_names();
     quality.names.emplace_back("custom");

@@ -99,24 +99,26 @@ struct QualityPreset {
     bool one_tangent;  // light every fibre along its cluster's axis (tangent_spread 0) instead of the measured tilts
     float lod_pixels;  // ShellSettings::lod_pixels
     float light_cull;  // ShellSettings::light_cull
+    int kbuffer_slots; // ShellSettings::kbuffer_slots (with the k-buffer compositing)
 };
 inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::low, "low", "weighted blended compositing (bounded memory), one record per sector, re's first harmonic, a "
                           "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis, "
                           "coarse meshes, the dimmest lights carrying 20 % of each sample's light skipped (previews, dragging)",
-     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f},
+     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f, 8},
     {Quality::medium, "medium",
-     "exact compositing, one record per sector, re's first harmonic, a quarter of the lighting samples where the "
-     "clusters are smooth, coarser meshes, the dimmest lights carrying 10 % of each sample's light skipped",
-     Compositing::exact, 1, 1, 4, false, 32.0f, 0.1f},
+     "k-buffer compositing (the nearest 4 fragments of each pixel exact; bounded memory), one record per sector, re's "
+     "first harmonic, a quarter of the lighting samples where the clusters are smooth, coarser meshes, the dimmest "
+     "lights carrying 10 % of each sample's light skipped",
+     Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4},
     {Quality::high, "high",
      "exact compositing, two records per sector, half the lighting samples where the clusters are smooth, meshes "
      "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped (the "
      "default)",
-     Compositing::exact, 2, 2, 2, false, 24.0f, 0.05f},
+     Compositing::exact, 2, 2, 2, false, 24.0f, 0.05f, 8},
     {Quality::full, "full", "exact compositing, two records per sector, every lighting sample, full meshes, every light: the "
                             "reference of the others",
-     Compositing::exact, 2, 2, 1, false, 0.0f, 0.0f},
+     Compositing::exact, 2, 2, 1, false, 0.0f, 0.0f, 8},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);

@@ -193,6 +193,13 @@ TEST(ShellCompositing, KBufferIsExactWherePixelsHoldAtMostKFragmentsAndNearerExa
         EXPECT_GT(e.psnr_hair_db, last_db - 0.1) << k;  // no worse than fewer slots (0.1 dB: the rounding's own level)
         last_db = e.psnr_hair_db;
     }
+    // It counts what it draws once, though it draws every triangle twice (depths, then shaded), frame after frame.
+    const std::size_t triangles = scene.renderer.timings().triangles_drawn;
+    scene.renderer.render(scene.camera, s);
+    EXPECT_EQ(scene.renderer.timings().triangles_drawn, triangles);
+    s.compositing = gl::Compositing::exact;
+    scene.renderer.render(scene.camera, s);
+    EXPECT_EQ(scene.renderer.timings().triangles_drawn, triangles);
     // Measured 40.9, 45.2, 57.5, 71.9, 71.9 dB for k = 1, 2, 4, 8, 16 (the weighted blend 25.7): from k = 8 what lies
     // behind the slots is too faint to matter, and the image is as near the CPU composite as the exact mode's (bound 60).
     EXPECT_GT(last_db, 60.0);
