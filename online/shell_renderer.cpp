@@ -499,6 +499,13 @@ std::vector<int> ShellRenderer::read_lights_lit() const {
     return out;
 }
 
+double ShellRenderer::mean_lights_lit() const {
+    const std::vector<int> lit = read_lights_lit();
+    double sum = 0;
+    for (const int n : lit) sum += n;
+    return lit.empty() ? 0.0 : sum / static_cast<double>(lit.size());
+}
+
 int ShellRenderer::lighting_rows() const { return impl_->gpu->lighting_rows; }
 
 std::vector<glm::vec2> ShellRenderer::read_shadows() const {

@@ -189,6 +189,7 @@ public:
     // The lights that the lighting pass of the last draw lit at each sample it lit (ShellSettings::light_cull skips
     // some; ShellTimings::lighting_step says which samples were lit): cluster by cluster, along each.
     std::vector<int> read_lights_lit() const;
+    double mean_lights_lit() const;  // their mean (0 when none was lit)
     int lighting_rows() const;
     // The shadow pass's output of the last draw that ran it: (T̃, n) per lighting sample (cluster-major,
     // as lighting_sample) and light.

@@ -129,12 +129,7 @@ void add_bench_render(CLI::App& root) {
                 const coif::gl::ShellFrameTimes t = coif::gl::time_shell_frames(renderer, cam, moving, false, o->frames);
                 const std::size_t triangles_drawn = renderer.timings().triangles_drawn;
                 const auto at_level = renderer.timings().clusters_at_level;
-                double lights_lit = 0;  // per lighting sample, on average (ShellSettings::light_cull)
-                {
-                    const std::vector<int> lit = renderer.read_lights_lit();
-                    for (const int n : lit) lights_lit += n;
-                    lights_lit /= double(std::max<std::size_t>(1, lit.size()));
-                }
+                const double lights_lit = renderer.mean_lights_lit();  // per lighting sample (ShellSettings::light_cull)
                 // The same preset lighting every light: what its light culling saves, in the same run.
                 double all_lights_ms = t.lighting_ms;
                 if (moving.light_cull > 0.0f) {

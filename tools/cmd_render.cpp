@@ -227,12 +227,7 @@ void add_render(CLI::App& root) {
                          scene.database_label + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
         const auto& st = renderer.stats();
-        double lights_lit = 0;  // per lighting sample, on average (ShellSettings::light_cull skips some)
-        {
-            const std::vector<int> lit = renderer.read_lights_lit();
-            for (const int n : lit) lights_lit += n;
-            lights_lit /= double(std::max<std::size_t>(1, lit.size()));
-        }
+        const double lights_lit = renderer.mean_lights_lit();  // per lighting sample (ShellSettings::light_cull skips some)
         if (o->json)
             coif::cli::print_json({{"output", o->output},
                                    {"renderer", "SATF shells"},

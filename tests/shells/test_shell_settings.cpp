@@ -67,7 +67,12 @@ TEST_F(ShellSettingsFile, CompositingModeByName) {
     EXPECT_EQ(gl::read_shell_settings(write("b.json", R"({"compositing": "sorted"})")).compositing, gl::Compositing::sorted);
     EXPECT_EQ(gl::read_shell_settings(write("c.json", R"({"compositing": "exact"})")).compositing, gl::Compositing::exact);
     EXPECT_EQ(gl::read_shell_settings(write("d.json", R"({"compositing": "weighted"})")).compositing, gl::Compositing::weighted);
-    EXPECT_EQ(refusal(R"({"compositing": "peeled"})"), "JSON /compositing: 'peeled' is not sorted, unsorted, exact or weighted");
+    EXPECT_EQ(gl::read_shell_settings(write("e.json", R"({"compositing": "kbuffer"})")).compositing, gl::Compositing::kbuffer);
+    EXPECT_EQ(refusal(R"({"compositing": "peeled"})"),
+              "JSON /compositing: 'peeled' is not sorted, unsorted, exact, weighted or kbuffer");
+    EXPECT_EQ(refusal(R"({"kbuffer_slots": 17})").rfind("JSON /kbuffer_slots: ", 0), 0u);  // 1..kMaxKBufferSlots
+    EXPECT_EQ(refusal(R"({"kbuffer_slots": 0})").rfind("JSON /kbuffer_slots: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"light_cull": 0.6})").rfind("JSON /light_cull: ", 0), 0u);  // 0..0.5
     EXPECT_EQ(refusal(R"({"compositing": true})").rfind("JSON /compositing: ", 0), 0u);
 }
 
@@ -88,6 +93,8 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.neighbours = 4;
     s.fourier_order = 3;
     s.compositing = gl::Compositing::sorted;
+    s.kbuffer_slots = 3;
+    s.light_cull = 0.125f;
     s.debug = 2;
     s.lighting_per_fragment = true;
     const std::string path = (dir_ / "written.json").string();
