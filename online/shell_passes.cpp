@@ -354,14 +354,16 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
     const glm::mat4 vp = pixel_shift(d.jitter, width, height) * view.projection * view.view;
     glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
+    if (depth != DepthTest::none) {  // (never for the floor)
+        glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
+        glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
+        // The lists' and the weighted targets' framebuffer is the viewport's size; a blended draw goes straight into
+        // the host's framebuffer.
+        const glm::ivec2 offset = own_targets ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
+        glUniform2i(prog.uniform("u_scene_depth_offset"), offset.x, offset.y);
+    }
     if (depth_pass) {
         glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
-        glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
-        if (depth != DepthTest::none) {
-            glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
-            glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
-            glUniform2i(prog.uniform("u_scene_depth_offset"), t.viewport.x, t.viewport.y);
-        }
     } else if (!floor_only) {
         glBindTextureUnit(0, gpu.atlas.id());
         glBindTextureUnit(1, gpu.lighting.id());
@@ -383,14 +385,6 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         glUniform1f(prog.uniform("u_re_scale"), 1.0f / gpu.re_norm);
         glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
         if (s.lighting_per_fragment) lighting.bind_inputs(prog, gpu, s);
-        if (depth != DepthTest::none) {
-            glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
-            glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
-            // The lists' and the weighted targets' framebuffer is the viewport's size; a blended draw goes straight into
-            // the host's framebuffer.
-            const glm::ivec2 offset = own_targets ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
-            glUniform2i(prog.uniform("u_scene_depth_offset"), offset.x, offset.y);
-        }
     }
     // Clusters wholly outside the view make no fragment: skipped, the image is the same. The weighted compositing
     // normalises its fragments' eye distances to the range of the clusters' boxes.

@@ -404,9 +404,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
         }
         if (s.timed) glFinish();
         const auto t0 = Clock::now();
-        ShellSettings lit = s;
-        lit.lighting_step = m.lighting_step(s.lighting_step);
-        m.shells_pass.draw(gpu, m.shells, view, d, lit, false, m.lighting);
+        m.shells_pass.draw(gpu, m.shells, view, d, s, false, m.lighting);
         if (s.timed) {
             glFinish();
             m.depth_pass_ms += wall_ms_since(t0);
@@ -470,10 +468,18 @@ void ShellRenderer::finish_frame(const ShellSettings& s, bool floor_only) {
     }
 }
 
-std::vector<float> ShellRenderer::read_lighting() const {
-    const ShellGpu& g = *impl_->gpu;
+namespace {
+// The lighting pass's texture as it is: per cluster, kLightingTexels rows of lighting_rows RGBA texels.
+std::vector<float> lighting_texels(const ShellGpu& g) {
     std::vector<float> tex(static_cast<std::size_t>(g.lighting_rows) * g.clusters * kLightingTexels * 4);
     glGetTextureImage(g.lighting.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(tex.size() * sizeof(float)), tex.data());
+    return tex;
+}
+}  // namespace
+
+std::vector<float> ShellRenderer::read_lighting() const {
+    const ShellGpu& g = *impl_->gpu;
+    const std::vector<float> tex = lighting_texels(g);
     std::vector<float> out(g.clusters * g.lighting_rows * 27);
     for (std::size_t c = 0; c < g.clusters; ++c)
         for (int r = 0; r < g.lighting_rows; ++r)
@@ -486,8 +492,7 @@ std::vector<float> ShellRenderer::read_lighting() const {
 
 std::vector<int> ShellRenderer::read_lights_lit() const {
     const ShellGpu& g = *impl_->gpu;
-    std::vector<float> tex(static_cast<std::size_t>(g.lighting_rows) * g.clusters * kLightingTexels * 4);
-    glGetTextureImage(g.lighting.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(tex.size() * sizeof(float)), tex.data());
+    const std::vector<float> tex = lighting_texels(g);
     const int used = lit_rows(g.lighting_rows, timings_.lighting_step);
     std::vector<int> out;
     out.reserve(g.clusters * static_cast<std::size_t>(used));

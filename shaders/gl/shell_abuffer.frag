@@ -10,6 +10,7 @@
 //   links     node → (eye distance as float bits, index of the next node of the same pixel)
 #include "shaders/gl/shell_shade.glsl"
 #include "shaders/gl/scene_depth.glsl"
+#include "shaders/gl/fragment_distance.glsl"
 
 in vec3 v_position;
 in vec3 v_tangent;
@@ -23,10 +24,6 @@ layout(binding = 0, offset = 0) uniform atomic_uint u_fragment_count;
 layout(std430, binding = 6) writeonly buffer FragmentColors { uvec2 fragment_colors[]; };
 layout(std430, binding = 7) writeonly buffer FragmentLinks { uvec2 fragment_links[]; };
 uniform uint u_capacity;
-// World units per unit of v_position: an instance of the hair drawn in its own space (online/shell_renderer.h
-// draw_frame) under a transform of uniform scale s has eye distances s times those of its space, and the fragments of
-// every instance share the lists.
-uniform float u_distance_scale;
 
 void main() {
     if (behind_scene()) discard;
@@ -35,5 +32,5 @@ void main() {
     if (node >= u_capacity) return;  // overflow: counted by the counter, reported by the host
     uint next = imageAtomicExchange(u_heads, ivec2(gl_FragCoord.xy), node);
     fragment_colors[node] = uvec2(packHalf2x16(color.rg), packHalf2x16(color.ba));
-    fragment_links[node] = uvec2(floatBitsToUint(u_distance_scale * distance(v_position, u_eye)), next);
+    fragment_links[node] = uvec2(eye_distance_bits(v_position, u_eye), next);
 }

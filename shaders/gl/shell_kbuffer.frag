@@ -5,6 +5,7 @@
 #include "shaders/gl/shell_shade.glsl"
 #include "shaders/gl/scene_depth.glsl"
 #include "shaders/gl/weighted_weight.glsl"
+#include "shaders/gl/fragment_distance.glsl"
 
 in vec3 v_position;
 in vec3 v_tangent;
@@ -15,7 +16,6 @@ flat in uvec2 v_info;
 
 layout(binding = 1, r32ui) uniform readonly uimage2DArray u_slot_depth;
 layout(binding = 2, rgba16f) uniform writeonly image2DArray u_slot_color;
-uniform float u_distance_scale;
 
 layout(location = 0) out vec4 o_accum;
 layout(location = 1) out vec4 o_revealage;
@@ -23,7 +23,7 @@ layout(location = 1) out vec4 o_revealage;
 void main() {
     if (behind_scene()) discard;
     vec4 color = shell_shade(v_position, v_tangent, v_normal, v_axis_normal, v_texcoord, v_info);
-    uint key = floatBitsToUint(u_distance_scale * distance(v_position, u_eye));
+    uint key = eye_distance_bits(v_position, u_eye);
     ivec2 p = ivec2(gl_FragCoord.xy);
     int slot = -1;
     for (int i = 0; i < KBUFFER_SLOTS; ++i)

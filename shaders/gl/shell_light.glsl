@@ -17,10 +17,16 @@ uniform int u_absorption_on;     // painted absorption (models/absorption_map.h)
 uniform sampler2D u_absorption;  // σa per lighting sample: texel (row, cluster), RGB32F
 uniform float u_d_f;     // Zinke's forward density factor d_f
 
+// The luminance of light j's radiance L_j (Rec. 709 weights, as the shadow AOV's).
+float light_luminance(int j) { return dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722)); }
+
+// Light j's shadow (T̃, n) at lighting sample i: the shadow pass's, or unoccluded (1, 0) with shadows off.
+vec2 sample_shadow(int i, int j) { return u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0); }
+
 // Light j's radiance at point p, shadowed by sh = (T̃, n); `lum_visible` adds lum(L_j) T̃_j and
 // `lum_total` lum(L_j) (the shadow AOV).
 vec3 shell_light_weight(SrbfPoint p, int j, vec2 sh, inout float lum_visible, inout float lum_total) {
-    float lum = dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722));
+    float lum = light_luminance(j);
     lum_visible += lum * sh.x;
     lum_total += lum;
     return srbf_light_radiance(p, u_d_f, j, sh);

@@ -67,9 +67,9 @@ void main() {
     float estimate[SHELL_CULL_LIGHTS];
     float estimated = 0.0;
     for (int j = 0; j < SHELL_CULL_LIGHTS; ++j) {
-        vec2 sh = u_shadows != 0 ? shadows[i * SHELL_CULL_LIGHTS + j] : vec2(1.0, 0.0);
+        vec2 sh = sample_shadow(i, j);
         vec4 dl = lights[j].direction_lambda;
-        float lum = dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722));
+        float lum = light_luminance(j);
         visible += lum * sh.x;
         total += lum;
         float reach = sh.x;
@@ -108,8 +108,6 @@ void main() {
     }
     // The kept lights stand for the skipped ones too: scaled by Σ b over Σ b kept (at most 1 / (1 − u_light_cull)).
     float stand_in = kept_estimate > 0.0 ? estimated / kept_estimate : 1.0;
-    float unused_visible = 0.0;
-    float unused_total = 0.0;
 #endif
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
         vec3 Tq;
@@ -117,14 +115,12 @@ void main() {
         fibre_tangent_of(T, r0, tm, ta, tb, q, SHELL_TANGENTS, Tq, rq);
         SrbfPoint p = srbf_point(hp, V, Tq, rq);
 #ifdef SHELL_CULL_LIGHTS
-        for (int m = 0; m < kept_count; ++m) {
+        for (int m = 0; m < kept_count; ++m) {  // (the shadow AOV counted every light above)
             int j = kept[m];
-            vec2 sh = u_shadows != 0 ? shadows[i * SHELL_CULL_LIGHTS + j] : vec2(1.0, 0.0);
-            vec3 wj = shell_light_weight(p, j, sh, unused_visible, unused_total) * (stand_in / float(SHELL_TANGENTS));
+            vec3 wj = srbf_light_radiance(p, u_d_f, j, sample_shadow(i, j)) * (stand_in / float(SHELL_TANGENTS));
 #else
         for (int j = 0; j < u_light_count; ++j) {
-            vec2 sh = u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0);
-            vec3 wj = shell_light_weight(p, j, sh, visible, total) * (1.0 / float(SHELL_TANGENTS));
+            vec3 wj = shell_light_weight(p, j, sample_shadow(i, j), visible, total) * (1.0 / float(SHELL_TANGENTS));
 #endif
             vec3 l = lights[j].direction_lambda.xyz;
             float psi = sector_azimuth(l, T, r0);
