@@ -129,7 +129,7 @@ TEST(HrirDb, EveryCorruptFileIsRefused) {
     expect_refused(dir / "empty.db", "truncated");
     expect_refused(variant("magic.db", [](auto& b) { b[0] = std::byte{'X'}; }), "bad magic");
     expect_refused(variant("version.db", [](auto& b) { b[8] = std::byte{9}; }), "format version 9");
-    expect_refused(variant("truncated.db", [](auto& b) { b.resize(b.size() - 100); }), "truncated or corrupt");
+    expect_refused(variant("truncated.db", [](auto& b) { b.erase(b.end() - 100, b.end()); }), "truncated or corrupt");
     expect_refused(variant("extended.db", [](auto& b) { b.push_back(std::byte{0}); }), "truncated or corrupt");
     expect_refused(variant("record.db", [](auto& b) { b[b.size() - 20] ^= std::byte{1}; }), "checksum mismatch");
     expect_refused(variant("json.db", [](auto& b) { b[70] ^= std::byte{0x20}; }), "checksum mismatch");
