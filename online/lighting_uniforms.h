@@ -20,7 +20,7 @@ namespace coif::gl {
 
 // The sampler names of shaders/lighting/luts_gl.glsl, in shading::LutSet order.
 inline constexpr std::array<const char*, shading::kLutCount> kLutUniformNames = {
-    "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit",
+    "lut_ck_lo", "lut_ck_hi", "lut_h_tt", "lut_h_trt", "lut_half_mass", "lut_fresnel_fit", "lut_own_cluster",
     "lut_ms_ab", "lut_ms_sat_delta", "lut_ms_sat_sigma", "lut_ms_af"};
 
 // True when (a, ca) and (b, cb) give the same dual-scattering tables (every field they read,

@@ -190,8 +190,10 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step) con
 
 // ---- LightingPass ----------------------------------------------------------------------------------
 
+void LightingPass::bind_tables(const Program& prog) const { tables_.bind(prog, 2); }
+
 void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const ShellSettings& s) const {
-    tables_.bind(prog, 2);
+    bind_tables(prog);
     set_lighting_uniforms(prog, s.hair.fibre, s.hair.config);
     glUniform1i(prog.uniform("u_light_count"), gpu.light_count);
     glUniform1i(prog.uniform("u_shadows"), s.shadows && gpu.light_count > 0 ? 1 : 0);
@@ -384,7 +386,10 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
         glUniform1f(prog.uniform("u_re_scale"), 1.0f / gpu.re_norm);
         glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
-        if (s.lighting_per_fragment) lighting.bind_inputs(prog, gpu, s);
+        if (s.lighting_per_fragment)
+            lighting.bind_inputs(prog, gpu, s);
+        else if (s.own_cluster_shadow)
+            lighting.bind_tables(prog);  // lut_own_cluster
     }
     // Clusters wholly outside the view make no fragment: skipped, the image is the same. The weighted compositing
     // normalises its fragments' eye distances to the range of the clusters' boxes.

@@ -130,6 +130,8 @@ public:
     // The uniforms and bindings that the lighting pass and the per-fragment lighting reference
     // (ShellSettings::lighting_per_fragment) read: the tables, the parameters, the lights, their shadows, σa.
     void bind_inputs(const Program& program, const ShellGpu& gpu, const ShellSettings& s) const;
+    // The lighting module's tables alone, on units 2 … 1 + kLutCount (the shells read lut_own_cluster).
+    void bind_tables(const Program& program) const;
 
     // The SHELL_TANGENTS define of the programs that light fibres (shell_light.glsl): 1 when s.tangent_spread is 0.
     static std::string tangents_define(const ShellSettings& s);

@@ -13,6 +13,10 @@
 #include "models/core/units.h"
 #include "shaders/lighting.h"
 
+namespace coif::glsl {
+#include "shaders/lighting/own_cluster.glsl"
+}  // namespace coif::glsl
+
 #ifndef COIF_LIGHTING_TABLES_GENERATOR
 namespace coif::embedded {  // the tables computed at build time (shaders/CMakeLists.txt)
 std::optional<std::span<const unsigned char>> lighting_tables_data(std::string_view path);
@@ -158,6 +162,32 @@ double half_mass_direct(double lambda, double delta) {
     return (inside + correction) / all;
 }
 
+std::array<double, 9> own_cluster_direct(double tau, double rho) {
+    // O is even in Δ: o_0 = (1/π) ∫_0^π O dΔ, o_m = (2/π) ∫_0^π O cos mΔ dΔ, by the trapezoid rule on 4096 intervals
+    // (cos mΔ by Chebyshev's recurrence). O is smooth but for the kink at Δ = π/2 when ρ = 1 (where the chord turns
+    // from 0 to −2 cos Δ), a grid point: the rule stays second order there, its error far below the table's
+    // interpolation (tests/shading/test_own_cluster.cpp).
+    constexpr int n = 4096;
+    std::array<double, 9> o{};
+    for (int q = 0; q <= n; ++q) {
+        const double d = kPi * q / n;
+        const double c = std::cos(d), s = std::sin(d);
+        const double path = std::max(-rho * c + std::sqrt(std::max(1.0 - rho * rho * s * s, 0.0)), 0.0);
+        const double w = (q == 0 || q == n ? 0.5 : 1.0) * std::exp(-tau * path);
+        double prev = 1.0, cur = c;  // cos 0Δ, cos Δ
+        o[0] += w;
+        for (int m = 1; m < 9; ++m) {
+            o[m] += w * cur;
+            const double next = 2.0 * c * cur - prev;
+            prev = cur;
+            cur = next;
+        }
+    }
+    o[0] /= n;
+    for (int m = 1; m < 9; ++m) o[m] *= 2.0 / n;
+    return o;
+}
+
 LutSet LightingTables::set() const {
     LutSet s;
     s.images[int(Lut::lut_ck_lo)] = &ck_lo;
@@ -166,6 +196,7 @@ LutSet LightingTables::set() const {
     s.images[int(Lut::lut_h_trt)] = &h_trt;
     s.images[int(Lut::lut_half_mass)] = &half_mass;
     s.images[int(Lut::lut_fresnel_fit)] = &fresnel_fit;
+    s.images[int(Lut::lut_own_cluster)] = &own_cluster;
     return s;
 }
 
@@ -211,6 +242,15 @@ LightingTables build_lighting_tables() {
         t.fresnel_fit.at(0, y) = glm::vec4(f[0], f[1], f[2], f[3]);
         t.fresnel_fit.at(1, y) = glm::vec4(f[4], f[5], 0.0, 0.0);
     });
+    t.own_cluster = LutImage(OWN_N_TAU, 3 * OWN_N_RHO);
+    parallel_rows(OWN_N_RHO, [&](int y) {
+        for (int x = 0; x < OWN_N_TAU; ++x) {
+            const auto o = own_cluster_direct(own_cluster_tau_at(x), own_cluster_rho_at(y));
+            t.own_cluster.at(x, y) = glm::vec4(o[0], o[1], o[2], o[3]);
+            t.own_cluster.at(x, y + OWN_N_RHO) = glm::vec4(o[4], o[5], o[6], o[7]);
+            t.own_cluster.at(x, y + 2 * OWN_N_RHO) = glm::vec4(o[8], 0.0, 0.0, 0.0);
+        }
+    });
     t.build_seconds = seconds_since(start);
     return t;
 }
@@ -220,7 +260,7 @@ namespace {
 // The tables in their byte order (lighting_tables_bytes), for reading (T = const LightingTables) or filling.
 template <class T>
 auto images_of(T& t) {
-    return std::array{&t.ck_lo, &t.ck_hi, &t.h_tt, &t.h_trt, &t.half_mass, &t.fresnel_fit};
+    return std::array{&t.ck_lo, &t.ck_hi, &t.h_tt, &t.h_trt, &t.half_mass, &t.fresnel_fit, &t.own_cluster};
 }
 
 }  // namespace

@@ -23,6 +23,7 @@ enum class Lut : int {
     lut_h_trt,         // 000 eq. 23 H_k^TRT
     lut_half_mass,     // share of a circular Gaussian inside a half circle (000 eq. 28)
     lut_fresnel_fit,   // polynomial fit of the exact Fresnel term in cos(incidence), per η
+    lut_own_cluster,   // the own cluster's transmittance O(Δ) as cosine harmonics over (τ, ρ) (own_cluster.glsl)
     lut_ms_ab,         // Zinke's Ā_b(θd, σa) for one parameter set (000 eq. 29), one channel
     lut_ms_sat_delta,  // summed-area table of Δ̄_b(θd, σa) over θd (000 eq. 31)
     lut_ms_sat_sigma,  // summed-area table of σ̄_b(θd, σa)

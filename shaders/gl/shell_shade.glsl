@@ -55,6 +55,7 @@
 #define SHELL_OWN 1
 #endif
 #if SHELL_OWN == 1
+#include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
 #include "shaders/lighting/own_cluster.glsl"
 #endif
 

@@ -26,6 +26,7 @@ layout(local_size_x = 64) in;
 #endif
 
 #include "shaders/gl/lighting_samples.glsl"
+#include "shaders/lighting/luts_gl.glsl"
 #include "shaders/lighting/own_cluster.glsl"
 struct GpuLight {
     vec4 direction_lambda;

@@ -14,6 +14,7 @@ uniform sampler2D lut_h_tt;
 uniform sampler2D lut_h_trt;
 uniform sampler2D lut_half_mass;
 uniform sampler2D lut_fresnel_fit;
+uniform sampler2D lut_own_cluster;
 uniform sampler2D lut_ms_ab;
 uniform sampler2D lut_ms_sat_delta;
 uniform sampler2D lut_ms_sat_sigma;

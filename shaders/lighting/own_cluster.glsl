@@ -14,22 +14,28 @@
 // The shells' Fourier path holds the lights only as harmonics of their azimuth (shell_lighting.comp:
 // Σ_j w_j cos kψ_j, …, k ≤ 4) and the records' re(Δ) as harmonics of the light's azimuth Δ from the
 // fragment's radial direction. O multiplies re for every light alike (τ then folds the lights' angles to
-// the axis into one value per lighting sample), so the product h(Δ) = re(Δ) O(Δ) takes re's place:
-// own_cluster_harmonics gives h's harmonics 0..4 by the trapezoid rule over OWN_CLUSTER_POINTS azimuths.
-// With 16 points the rule is exact for h = re (τ = 0: re·cos kΔ has degree ≤ 8 < 16), and its error for
-// τ > 0 is the aliasing of O's harmonics beyond 11: below 1e-3 of re's mean for τ ≤ 4 and ρ ≤ 0.9, and
-// about 5 % at ρ = 1, where the chord has a kink as the light grazes the cluster and the harmonics decay
-// slowly (tests/shading/test_own_cluster.cpp; 32 points: 1.4 %, at twice the cost per fragment; the disc of
-// uniform density is a far cruder model than that). The shells take ρ at each layer mesh's own surface, the outer
-// layer's at ρ = 1 (its middle measured darker against the reference: docs/quality.md).
+// the axis into one value per lighting sample), so the product h(Δ) = re(Δ) O(Δ) takes re's place.
+// O is even in Δ, so O = o_0 + Σ_m o_m cos mΔ, and h's harmonics 0..4 need o_0..o_8 only (re has none above
+// 4): own_cluster_harmonics multiplies the two series exactly. o_0..o_8 depend on (τ, ρ) alone and are read
+// from a table (lut_own_cluster, below), computed once in double precision by shading::own_cluster_direct;
+// the read is bilinear, so the error is the table's interpolation: below 1e-3 of re's mean (measured 4.9e-4)
+// over τ ≤ 16 and every ρ, the kink at ρ = 1 included (tests/shading/test_own_cluster.cpp; the 16-point
+// rule over Δ per fragment that the table replaced was off by 4 % at ρ = 1, at 16 exponentials a fragment). The shells take ρ at each layer
+// mesh's own surface, the outer layer's at ρ = 1 (its middle measured darker against the reference:
+// docs/quality.md).
 #ifndef COIF_SHADERS_LIGHTING_OWN_CLUSTER_GLSL
 #define COIF_SHADERS_LIGHTING_OWN_CLUSTER_GLSL
 
-#ifndef COIF_FN
-#define COIF_FN
-#endif
+#include "shaders/lighting/luts.glsl"
 
-const int OWN_CLUSTER_POINTS = 16;
+// lut_own_cluster: o_0..o_8 over x = τ / (τ + OWN_TAU_SCALE) ∈ [0, OWN_X_MAX] (OWN_N_TAU columns; τ beyond
+// the last, 198, reads it) and v = √(1 − ρ) ∈ [0, 1] (OWN_N_RHO rows per block: dense toward the surface, ρ = 1,
+// where O changes fastest with ρ at large τ), in three blocks of rows: (o_0, o_1, o_2, o_3), (o_4, o_5, o_6, o_7),
+// (o_8, 0, 0, 0). A fetch stays within its block (the block's first and last rows sit on ρ = 1 and 0).
+const int OWN_N_TAU = 128;
+const int OWN_N_RHO = 49;
+const float OWN_TAU_SCALE = 2.0;
+const float OWN_X_MAX = 0.99;
 
 // s(ρ, Δ) above, from cos Δ and sin Δ.
 COIF_FN float own_cluster_path(float rho, float cos_d, float sin_d) {
@@ -47,38 +53,55 @@ COIF_FN float own_cluster_transmittance(float tau, float rho, float cos_d, float
     return exp(-tau * own_cluster_path(rho, cos_d, sin_d));
 }
 
+// τ and ρ of the table's grid point (column i, row j of a block).
+COIF_FN float own_cluster_tau_at(int i) {
+    float x = lut_point_lin(i, 0.0, OWN_X_MAX, OWN_N_TAU);
+    return OWN_TAU_SCALE * x / (1.0 - x);
+}
+COIF_FN float own_cluster_rho_at(int j) {
+    float v = float(j) / float(OWN_N_RHO - 1);
+    return 1.0 - v * v;
+}
+
+// O's cosine harmonics at (τ, ρ): o0123 = (o_0, …, o_3), o4567, o8. Three bilinear fetches.
+COIF_FN void fetch_own_cluster(float tau, float rho, OUT(vec4) o0123, OUT(vec4) o4567, OUT(float) o8) {
+    float u = lut_coord_lin(tau / (tau + OWN_TAU_SCALE), 0.0, OWN_X_MAX, OWN_N_TAU);
+    float row = sqrt(clamp(1.0 - rho, 0.0, 1.0)) * float(OWN_N_RHO - 1) + 0.5;
+    float rows = float(3 * OWN_N_RHO);
+    o0123 = COIF_LUT(lut_own_cluster, vec2(u, row / rows));
+    o4567 = COIF_LUT(lut_own_cluster, vec2(u, (row + float(OWN_N_RHO)) / rows));
+    o8 = COIF_LUT(lut_own_cluster, vec2(u, (row + float(2 * OWN_N_RHO)) / rows)).x;
+}
+
 // re's harmonics in, h = re · O's out, in the shells' layout: c01 = (a0, a1, b1), c23 = (a2, b2, a3, b3),
-// c4 = (a4, b4), re(Δ) = a0 + Σ_k a_k cos kΔ + b_k sin kΔ.
+// c4 = (a4, b4), re(Δ) = a0 + Σ_k a_k cos kΔ + b_k sin kΔ. With p_0 = o_0 and p_m = o_m / 2 (O as Σ_m p_|m| e^{imΔ}):
+//   h_0 = a0 p_0 + Σ_k a_k p_k,  a_n = 2 a0 p_n + Σ_k a_k (p_|n−k| + p_{n+k}),  b_n = Σ_k b_k (p_|n−k| − p_{n+k}).
 COIF_FN void own_cluster_harmonics(float tau, float rho, vec3 c01, vec4 c23, vec2 c4, OUT(vec3) h01, OUT(vec4) h23,
                                    OUT(vec2) h4) {
-    h01 = vec3(0.0);
-    h23 = vec4(0.0);
-    h4 = vec2(0.0);
-    float step_angle = 6.28318530717959 / float(OWN_CLUSTER_POINTS);
-    float cs = cos(step_angle);
-    float sn = sin(step_angle);
-    float c1 = 1.0;  // cos Δ_q, sin Δ_q by rotation from Δ_0 = 0
-    float s1 = 0.0;
-    for (int q = 0; q < OWN_CLUSTER_POINTS; ++q) {
-        float c2 = c1 * c1 - s1 * s1;
-        float s2 = 2.0 * c1 * s1;
-        float c3 = c2 * c1 - s2 * s1;
-        float s3 = s2 * c1 + c2 * s1;
-        float cos4 = c2 * c2 - s2 * s2;
-        float sin4 = 2.0 * c2 * s2;
-        float re = c01.x + c01.y * c1 + c01.z * s1 + c23.x * c2 + c23.y * s2 + c23.z * c3 + c23.w * s3 + c4.x * cos4 + c4.y * sin4;
-        float h = re * own_cluster_transmittance(tau, rho, c1, s1);
-        h01 += h * vec3(0.5, c1, s1);
-        h23 += h * vec4(c2, s2, c3, s3);
-        h4 += h * vec2(cos4, sin4);
-        float c_next = c1 * cs - s1 * sn;
-        s1 = s1 * cs + c1 * sn;
-        c1 = c_next;
-    }
-    float norm = 2.0 / float(OWN_CLUSTER_POINTS);
-    h01 *= norm;
-    h23 *= norm;
-    h4 *= norm;
+    vec4 o0123;
+    vec4 o4567;
+    float o8;
+    fetch_own_cluster(tau, rho, o0123, o4567, o8);
+    float p0 = o0123.x;
+    vec4 p1234 = 0.5 * vec4(o0123.y, o0123.z, o0123.w, o4567.x);
+    vec4 p5678 = 0.5 * vec4(o4567.y, o4567.z, o4567.w, o8);
+    // For n = 1..4 (the vectors' components): u_k = p_|n−k|, w_k = p_{n+k}.
+    vec4 u1 = vec4(p0, p1234.x, p1234.y, p1234.z);
+    vec4 u2 = vec4(p1234.x, p0, p1234.x, p1234.y);
+    vec4 u3 = vec4(p1234.y, p1234.x, p0, p1234.x);
+    vec4 u4 = vec4(p1234.z, p1234.y, p1234.x, p0);
+    vec4 w1 = vec4(p1234.y, p1234.z, p1234.w, p5678.x);
+    vec4 w2 = vec4(p1234.z, p1234.w, p5678.x, p5678.y);
+    vec4 w3 = vec4(p1234.w, p5678.x, p5678.y, p5678.z);
+    vec4 w4 = vec4(p5678.x, p5678.y, p5678.z, p5678.w);
+    float a0 = c01.x;
+    vec4 a = vec4(c01.y, c23.x, c23.z, c4.x);
+    vec4 b = vec4(c01.z, c23.y, c23.w, c4.y);
+    vec4 an = 2.0 * a0 * p1234 + a.x * (u1 + w1) + a.y * (u2 + w2) + a.z * (u3 + w3) + a.w * (u4 + w4);
+    vec4 bn = b.x * (u1 - w1) + b.y * (u2 - w2) + b.z * (u3 - w3) + b.w * (u4 - w4);
+    h01 = vec3(a0 * p0 + dot(a, p1234), an.x, bn.x);
+    h23 = vec4(an.y, bn.y, an.z, bn.z);
+    h4 = vec2(an.w, bn.w);
 }
 
 #endif
