@@ -69,9 +69,15 @@ ShellGpu::ShellGpu(const PreparedShells& shells, const RecordAtlas& a, const Den
     glVertexArrayAttribIFormat(v, 5, 1, GL_UNSIGNED_INT, 0);
     glVertexArrayAttribBinding(v, 5, 1);
 
-    lighting = make_texture_2d(GL_RGBA32F, lighting_rows, static_cast<int>(clusters * kLightingTexels),
-                               Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+    lighting = make_lighting_texture(lighting_rows, clusters);
     check_errors("ShellGpu upload");
+}
+
+Texture make_lighting_texture(int rows, std::size_t clusters) {
+    Texture t = make_texture_2d(GL_RGBA32F, rows, static_cast<int>(clusters * kLightingTexels), Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(t.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    return t;
 }
 
 namespace {
@@ -231,11 +237,29 @@ int lit_rows(int rows, int step) {
                                                 std::to_string(step));
 }
 
-bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key) {
+std::vector<int> lit_strides(const ShellGpu& gpu, std::span<const int> levels) {
+    std::vector<int> strides(gpu.clusters, 1);
+    for (std::size_t c = 0; c < levels.size() && c < strides.size(); ++c) strides[c] = lod_row_stride(levels[c], gpu.lighting_rows);
+    return strides;
+}
+
+std::vector<glm::ivec2> lit_samples(int rows, int step, std::span<const int> strides) {
+    const int used = lit_rows(rows, step);
+    std::vector<glm::ivec2> out;
+    for (std::size_t c = 0; c < strides.size(); ++c)
+        for (int u = 0; u < used; ++u)
+            if ((u * step) % strides[c] == 0 || u + 1 == used) out.emplace_back(static_cast<int>(c), u);
+    return out;
+}
+
+bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key,
+                       std::span<const int> levels) {
+    const std::vector<int> strides = lit_strides(gpu, levels);
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
                       key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull && key.eye == eye &&
                       key.lights_stamp == gpu.lights_stamp &&
-                      key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp;
+                      key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp &&
+                      key.strides == strides;
     if (same && s.reuse_lighting) return false;
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     std::vector<std::string> defines = variant_defines(s);
@@ -249,18 +273,21 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     const Program& program = *slot;
     program.use();
     bind_inputs(program, gpu, s);
-    const int used = lit_rows(gpu.lighting_rows, s.lighting_step);
-    const GLuint invocations = static_cast<GLuint>(gpu.clusters) * static_cast<GLuint>(used);
+    // The samples lit, as (cluster, k) for the k-th of the cluster's lit rows: every one the levels' meshes read.
+    const std::vector<glm::ivec2> samples = lit_samples(gpu.lighting_rows, s.lighting_step, strides);
+    const GLuint invocations = static_cast<GLuint>(samples.size());
+    const Buffer lit = make_buffer(samples.data(), std::max<std::size_t>(samples.size(), 1) * sizeof(glm::ivec2));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, lit.id());
     glUniform1i(program.uniform("u_invocations"), static_cast<GLint>(invocations));
     glUniform1i(program.uniform("u_rows"), gpu.lighting_rows);
     glUniform1i(program.uniform("u_step"), s.lighting_step);
-    glUniform1i(program.uniform("u_used"), used);
     glUniform3fv(program.uniform("u_eye"), 1, &eye.x);
     if (cull) glUniform1f(program.uniform("u_light_cull"), s.light_cull);
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, s.light_cull, eye, gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp};
+    key = {true,          s.hair,           s.shadows,           s.tangent_spread,    s.lighting_step, s.light_cull,
+           eye,           gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp, strides};
     return true;
 }
 
@@ -271,7 +298,7 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
     // Every lighting_step-th row lit is still a subset of the mesh rows, so the per-vertex read stays exact.
-    const int lighting = s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
+    const int lighting = lighting_read(s, lighting_rows, L);
     std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
                                      "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
                                      "SHELL_FOURIER " + std::to_string(s.fourier_order),
@@ -292,6 +319,24 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
     auto& slot = programs_[key];
     if (!slot) slot = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell.vert", fragment}, defines);
     return *slot;
+}
+
+int ShellsPass::lighting_read(const ShellSettings& s, int lighting_rows, const DiskLayout& L) {
+    return s.lighting_per_fragment ? 2 : lighting_rows == L.s_t * L.mesh_t + 1 ? 1 : 0;
+}
+
+std::vector<int>& ShellsPass::choose_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view,
+                                            const ShellDraw& d, const ShellSettings& s, bool floor_only) {
+    const bool lod = !floor_only && s.lod_pixels > 0.0f;
+    std::vector<int>& level = d.levels ? *d.levels : level_;
+    // The k-buffer's shading pass draws the meshes its depth pass drew.
+    const ShellDraw::Detail detail = d.phase == ShellDraw::Phase::shade ? ShellDraw::Detail::hold : d.detail;
+    if (level.size() != shells.clusters() || (lod && detail == ShellDraw::Detail::fresh)) level.assign(shells.clusters(), 0);
+    if (lod && detail != ShellDraw::Detail::hold) {
+        if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
+        pick_levels(gpu, shells, view, cluster_boxes(shells, prototype_boxes_), d.target.viewport.w, s.lod_pixels, level);
+    }
+    return level;
 }
 
 void ShellsPass::pick_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view,
@@ -395,15 +440,10 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     // normalises its fragments' eye distances to the range of the clusters' boxes.
     std::vector<char> visible(shells.clusters(), 1);
     const bool lod = !floor_only && s.lod_pixels > 0.0f;
-    std::vector<int>& level = d.levels ? *d.levels : level_;
-    // The k-buffer's shading pass draws the meshes its depth pass drew.
-    const ShellDraw::Detail detail = d.phase == ShellDraw::Phase::shade ? ShellDraw::Detail::hold : d.detail;
-    if (level.size() != shells.clusters() || (lod && detail == ShellDraw::Detail::fresh)) level.assign(shells.clusters(), 0);
-    const bool pick = lod && detail != ShellDraw::Detail::hold;
-    if (s.cull || weighted || pick) {
+    const std::vector<int>& level = choose_levels(gpu, shells, view, d, s, floor_only);
+    if (s.cull || weighted) {
         if (prototype_boxes_.size() != shells.meshes.size()) prototype_boxes_ = prototype_boxes(shells);
         const std::vector<ClusterBox> boxes = cluster_boxes(shells, prototype_boxes_);
-        if (pick) pick_levels(gpu, shells, view, boxes, height, s.lod_pixels, level);
         float nearest = std::numeric_limits<float>::max(), farthest = 0.0f;
         for (std::size_t c = 0; c < boxes.size(); ++c) {
             if (s.cull) visible[c] = box_in_view(vp, boxes[c]);

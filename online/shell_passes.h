@@ -15,6 +15,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "models/core/camera.h"
 #include "models/absorption_map.h"
@@ -45,6 +46,10 @@ inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow p
 // Texture units: 0 the record atlas, 1 the lighting sums, 2 … 1 + kLutCount the lighting tables, then the painted
 // absorption, then the host scene's depth (shaders/gl/scene_depth.glsl).
 inline constexpr int kSceneDepthUnit = 3 + shading::kLutCount;
+
+// The lighting pass's sums of `clusters` clusters of `rows` lighting samples (ShellGpu::lighting), cleared to 0: a
+// sample the pass skips (lit_samples) holds a finite value, which a bilinear read beside a lit one weighs by 0.
+Texture make_lighting_texture(int rows, std::size_t clusters);
 
 struct ShellGpu {
     // Needs a current GL 4.5 context; throws coif::Error if the atlas exceeds the GPU's texture size.
@@ -116,17 +121,27 @@ struct LightingKey {
     float light_cull = 0.0f;
     glm::vec3 eye{0.0f};
     std::uint64_t lights_stamp = 0, absorption_stamp = 0, geometry_stamp = 0;
+    std::vector<int> strides;  // per cluster: every strides-th of its rows lit (lit_strides: its level of detail's)
 };
 
 // The lighting samples lit per cluster when every `step`-th of its `rows` is (ShellSettings::lighting_step): the first,
 // every step-th after it, and the last. Throws coif::Error::parameter unless step divides rows - 1.
 int lit_rows(int rows, int step);
+// Per cluster, the stride along t of its mesh at its level of detail (shells/shell_lod.h lod_row_stride; 1 without
+// `levels`): the rows its vertices read the lighting sums at.
+std::vector<int> lit_strides(const ShellGpu& gpu, std::span<const int> levels);
+// The samples the lighting pass lights, as (cluster, k) for the k-th of the cluster's lit_rows(rows, step): those on its
+// stride, and the last.
+std::vector<glm::ivec2> lit_samples(int rows, int step, std::span<const int> strides);
 
 class LightingPass {
 public:
     // Writes gpu.lighting for `eye` (in the shells' space), unless `key` says that it holds the sums of these
     // inputs already (and s.reuse_lighting): then it returns false and does nothing. `key` becomes these inputs'.
-    bool run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key);
+    // `levels`: the clusters' levels of detail, when the shells read the sums per vertex (ShellSettings::lod_lighting):
+    // only the samples their meshes read are lit (lit_samples); empty lights every one.
+    bool run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key,
+             std::span<const int> levels = {});
     // The uniforms and bindings that the lighting pass and the per-fragment lighting reference
     // (ShellSettings::lighting_per_fragment) read: the tables, the parameters, the lights, their shadows, σa.
     void bind_inputs(const Program& program, const ShellGpu& gpu, const ShellSettings& s) const;
@@ -183,6 +198,14 @@ public:
     const std::array<std::size_t, kLodLevels>& clusters_at_level() const { return at_level_; }
     std::size_t triangles_drawn() const { return triangles_; }
     void forget_levels() { level_.clear(); }
+    // The clusters' levels of detail for draw `d` (its ShellDraw::levels, or the pass's own): picked from `view` as
+    // d.detail says (held in the k-buffer's shading pass), or all 0 without a level of detail. draw() calls it; a caller
+    // that needs the levels before drawing (the lighting pass) calls it first and draws with Detail::hold.
+    std::vector<int>& choose_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view,
+                                    const ShellDraw& d, const ShellSettings& s, bool floor_only);
+    // Where the shells read the lighting pass's sums (SHELL_LIGHTING, shaders/gl/shell_shade.glsl): 2 every light per
+    // fragment, 1 per vertex (the lighting rows are the mesh rows), 0 per fragment between the rows.
+    static int lighting_read(const ShellSettings& s, int lighting_rows, const DiskLayout& layout);
     // What the pass keeps of the shells it drew (their prototypes' boxes, the levels of detail): forgotten when the
     // renderer is given another hair (ShellRenderer::set_hair), whose meshes may differ with the same counts.
     void forget_shells() {

@@ -354,8 +354,7 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
         for (std::size_t i = 0; i < instances.size(); ++i) {
             InstanceLights& il = m.instances[i];
             if (il.lighting.id() == 0)
-                il.lighting = make_texture_2d(GL_RGBA32F, m.gpu->lighting_rows, static_cast<int>(m.gpu->clusters * kLightingTexels),
-                                              Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+                il.lighting = make_lighting_texture(m.gpu->lighting_rows, m.gpu->clusters);
             m.swap(il);
             if (il.lights != turned_lights[i]) {
                 m.gpu->set_lights(turned_lights[i]);
@@ -434,7 +433,16 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     timings_.lighting_wall_ms = timings_.shells_wall_ms = timings_.resolve_wall_ms = 0;
     ShellSettings lit = s;
     lit.lighting_step = timings_.lighting_step = step;
-    timings_.lighting_ran = !floor_only && m.lighting.run(gpu, lit, view.eye, m.lighting_key);
+    // The levels of detail first: the lighting pass lights only the samples their meshes read (when the shells read the
+    // sums per vertex, at the mesh rows); the shells then draw the levels picked here.
+    std::span<const int> levels;
+    if (!floor_only) {
+        const std::vector<int>& picked = m.shells_pass.choose_levels(gpu, m.shells, view, d, lit, false);
+        d.detail = ShellDraw::Detail::hold;
+        if (s.lod_lighting && s.lod_pixels > 0.0f && ShellsPass::lighting_read(lit, gpu.lighting_rows, gpu.layout) == 1)
+            levels = picked;
+    }
+    timings_.lighting_ran = !floor_only && m.lighting.run(gpu, lit, view.eye, m.lighting_key, levels);
     if (s.timed) {
         glFinish();
         timings_.lighting_wall_ms = timings_.lighting_ran ? wall_ms_since(t_pass) : 0.0;
@@ -493,14 +501,14 @@ std::vector<float> ShellRenderer::read_lighting() const {
 std::vector<int> ShellRenderer::read_lights_lit() const {
     const ShellGpu& g = *impl_->gpu;
     const std::vector<float> tex = lighting_texels(g);
-    const int used = lit_rows(g.lighting_rows, timings_.lighting_step);
+    // The samples the last lighting pass lit (its key's strides: the levels of detail's, or every sample).
+    std::vector<int> strides = impl_->lighting_key.strides;
+    if (strides.size() != g.clusters) strides.assign(g.clusters, 1);
     std::vector<int> out;
-    out.reserve(g.clusters * static_cast<std::size_t>(used));
-    for (std::size_t c = 0; c < g.clusters; ++c)
-        for (int r = 0; r < used; ++r) {
-            const std::size_t y = c * kLightingTexels + 29 / 4;  // float 29: texel 7's second
-            out.push_back(static_cast<int>(tex[(y * g.lighting_rows + r) * 4 + 29 % 4]));
-        }
+    for (const glm::ivec2 sample : lit_samples(g.lighting_rows, timings_.lighting_step, strides)) {
+        const std::size_t y = static_cast<std::size_t>(sample.x) * kLightingTexels + 29 / 4;  // float 29: texel 7's second
+        out.push_back(static_cast<int>(tex[(y * g.lighting_rows + static_cast<std::size_t>(sample.y)) * 4 + 29 % 4]));
+    }
     return out;
 }
 

@@ -184,10 +184,12 @@ public:
         return settings.fiber_radius > 0.0f ? settings.fiber_radius : stats_.auto_fiber_radius;
     }
     // The lighting pass's output of the last draw: per cluster, per lighting row, the 27 sums
-    // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator.
+    // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator. The rows the pass did not light
+    // (ShellSettings::lighting_step, lod_lighting) hold what they held before.
     std::vector<float> read_lighting() const;
     // The lights that the lighting pass of the last draw lit at each sample it lit (ShellSettings::light_cull skips
-    // some; ShellTimings::lighting_step says which samples were lit): cluster by cluster, along each.
+    // some; ShellTimings::lighting_step and the clusters' levels of detail say which samples were lit, shell_passes.h
+    // lit_samples): cluster by cluster, along each.
     std::vector<int> read_lights_lit() const;
     double mean_lights_lit() const;  // their mean (0 when none was lit)
     int lighting_rows() const;

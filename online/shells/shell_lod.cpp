@@ -9,11 +9,17 @@ namespace coif {
 
 GridStride lod_stride(int level, int rows, int columns) {
     GridStride s;
-    for (int k = 0; k < level; ++k) {
-        if ((rows - 1) / (2 * s.t) >= 1) s.t *= 2;
+    s.t = lod_row_stride(level, rows);
+    for (int k = 0; k < level; ++k)
         if ((columns - 1) / (2 * s.u) >= kLodMinColumns) s.u *= 2;
-    }
     return s;
+}
+
+int lod_row_stride(int level, int rows) {
+    int t = 1;
+    for (int k = 0; k < level; ++k)
+        if ((rows - 1) / (2 * t) >= 1) t *= 2;
+    return t;
 }
 
 LodMeshes lod_meshes(const PreparedShells& shells) {

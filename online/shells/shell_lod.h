@@ -26,6 +26,8 @@ inline constexpr float kLodHysteresis = 0.8f;
 
 // Level k's stride of a rows × columns layer grid (models/generalized_disk.h grid_triangles joins it).
 GridStride lod_stride(int level, int rows, int columns);
+// Its stride along t alone (which does not depend on the columns): the rows 0, stride, 2·stride, … and the last.
+int lod_row_stride(int level, int rows);
 
 // Every prototype's layer meshes at each level, in one index array: level 0's ranges are the shells' own (the array
 // starts with shells.indices), the coarser levels' follow.

@@ -74,6 +74,10 @@ struct ShellSettings {
     // kLodLevels meshes whose longest triangle edge projects within this many pixels (with hysteresis); 0 draws the
     // full meshes. docs/renderer.md ("Level of detail") measures the cost and the error.
     float lod_pixels = 24.0f;
+    // With a level of detail, the lighting pass lights only the samples that a cluster's mesh at its level reads (every
+    // 2nd or 4th row along t, as the level joins them, when the sums are read per vertex): the image is the same. false
+    // lights every sample whatever the levels (tests).
+    bool lod_lighting = true;
     // Lights left out per lighting sample (shaders/gl/shell_lighting.comp): each light's share of the sample's light is
     // estimated by its power times what reaches the sample (T̃ and the forward-scattered share of the shadow pass), and
     // the dimmest lights whose estimates sum to at most this fraction of the sample's total are skipped; 0 lights every

@@ -27,10 +27,11 @@ layout(local_size_x = 32) in;
 #include "shaders/gl/lighting_samples.glsl"
 layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
 
-uniform int u_invocations;  // clusters × u_used
+uniform int u_invocations;  // the samples lit
 uniform int u_rows;         // lighting samples per cluster
-uniform int u_step;         // every u_step-th of them is lit (ShellSettings::lighting_step), u_used per cluster,
-uniform int u_used;         // written to the first u_used texels of the cluster's rows
+uniform int u_step;         // every u_step-th of them is lit (ShellSettings::lighting_step), the k-th written to texel k
+// The samples lit, as (cluster, k): with a level of detail only those its meshes read (online/shell_passes.h lit_samples).
+layout(std430, binding = 5) readonly buffer LitSamples { ivec2 lit_samples[]; };
 uniform vec3 u_eye;
 #ifdef SHELL_CULL_LIGHTS
 uniform float u_light_cull;  // ShellSettings::light_cull
@@ -39,8 +40,8 @@ uniform float u_light_cull;  // ShellSettings::light_cull
 void main() {
     int invocation = int(gl_GlobalInvocationID.x);
     if (invocation >= u_invocations) return;
-    int cluster = invocation / u_used;
-    int used = invocation - cluster * u_used;
+    int cluster = lit_samples[invocation].x;
+    int used = lit_samples[invocation].y;
     int row = used * u_step;
     int i = cluster * u_rows + row;  // the lighting sample
     LightingSample s = samples[i];

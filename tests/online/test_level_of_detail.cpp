@@ -106,5 +106,51 @@ TEST(LevelOfDetail, ACameraMovingAwayAndBackSwitchesEachClusterOnceEachWayWithou
     }
 }
 
+TEST(LevelOfDetail, TheLightingPassLightsOnlyTheSamplesTheCoarserMeshesRead) {
+    // A cluster drawn at level 2 joins every 4th row along t, and its vertices read the lighting sums at those rows
+    // alone, so the lighting pass skips the others (ShellSettings::lod_lighting): the image is bit-identical to lighting
+    // every sample. Each pass lights every sample (lighting_step 1), so that the levels' strides decide alone.
+    auto context = gl::Context::headless();
+    gl::ShellRenderer r(cook_shells(test::prototype_and_instance(), test::test_index(), glm::mat3(1.0f)));
+    r.set_lights(test::two_lights());
+    const Camera framed = Camera::orbit(r.bounds_min(), r.bounds_max(), 0.3f, 0.2f, 96, 64);
+    Camera far = framed;
+    far.eye = far.target + 4.0f * (framed.eye - framed.target);
+    far.far_plane = 4.0f * framed.far_plane;
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.lod_pixels = 10.0f;
+    s.lighting_step = 1;
+    gl::ShellSettings every = s;
+    every.lod_lighting = false;
+    const int rows = r.lighting_rows();
+    const std::size_t clusters = 2;
+    // The rows a level-2 mesh keeps: 0, 4, 8, … and the last.
+    const std::size_t kept = static_cast<std::size_t>((rows - 1) / 4 + 1 + ((rows - 1) % 4 != 0 ? 1 : 0));
+
+    const Image skipped = r.render(far, s);
+    ASSERT_EQ(r.timings().clusters_at_level[kLodLevels - 1], clusters) << "both clusters at the coarsest level";
+    EXPECT_EQ(r.read_lights_lit().size(), clusters * kept);
+    const Image all = r.render(far, every);
+    EXPECT_EQ(r.read_lights_lit().size(), clusters * static_cast<std::size_t>(rows));
+    EXPECT_EQ(skipped.pixels, all.pixels) << "the samples skipped are read by no vertex";
+    ASSERT_GT(mean(all), 0.0) << "the hair must show";
+
+    // Near, at full detail, every sample is lit.
+    r.render(framed, s);
+    ASSERT_EQ(r.timings().clusters_at_level[0], clusters);
+    EXPECT_EQ(r.read_lights_lit().size(), clusters * static_cast<std::size_t>(rows));
+
+    // The samples lit are part of what the sums are reused for: the same eye with full meshes after the skipping frame
+    // lights the skipped samples too, and draws what a new renderer draws.
+    r.render(far, s);
+    gl::ShellSettings full_meshes = s;
+    full_meshes.lod_pixels = 0.0f;
+    const Image after = r.render(far, full_meshes);
+    gl::ShellRenderer fresh(cook_shells(test::prototype_and_instance(), test::test_index(), glm::mat3(1.0f)));
+    fresh.set_lights(test::two_lights());
+    EXPECT_EQ(fresh.render(far, full_meshes).pixels, after.pixels);
+}
+
 }  // namespace
 }  // namespace coif

@@ -75,7 +75,8 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     for (const float spread : {0.0f, 0.5f, -1.0f})
     for (const bool multiple : {false, true}) {
     gl::ShellSettings settings;
-    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them
+    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them,
+    settings.lod_lighting = false;  // whatever the clusters' levels of detail
     settings.hair.multiple = multiple;
     settings.tangent_spread = spread;
     settings.shadows = false;  // one cluster; the shadowed case is ShadowsBetweenClusters… below
@@ -141,7 +142,8 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
     gl::ShellSettings settings;
-    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them
+    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them,
+    settings.lod_lighting = false;  // whatever the clusters' levels of detail
     settings.fiber_radius = 0.05f;  // fibres of radius r: τ = 2r × the strands' projected length per area
     // Rays start outside the own cluster (its share is each fragment's: shaders/lighting/own_cluster.glsl), so
     // c0 sees the light unshadowed.
