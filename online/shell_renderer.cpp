@@ -439,6 +439,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     if (!floor_only) {
         const std::vector<int>& picked = m.shells_pass.choose_levels(gpu, m.shells, view, d, lit, false);
         d.detail = ShellDraw::Detail::hold;
+        // (Without a level of detail the levels keep what they held, which the full meshes drawn do not read.)
         if (s.lod_lighting && s.lod_pixels > 0.0f && ShellsPass::lighting_read(lit, gpu.lighting_rows, gpu.layout) == 1)
             levels = picked;
     }
@@ -502,8 +503,8 @@ std::vector<int> ShellRenderer::read_lights_lit() const {
     const ShellGpu& g = *impl_->gpu;
     const std::vector<float> tex = lighting_texels(g);
     // The samples the last lighting pass lit (its key's strides: the levels of detail's, or every sample).
-    std::vector<int> strides = impl_->lighting_key.strides;
-    if (strides.size() != g.clusters) strides.assign(g.clusters, 1);
+    const std::vector<int> strides =
+        impl_->lighting_key.strides.size() == g.clusters ? impl_->lighting_key.strides : lit_strides(g, {});
     std::vector<int> out;
     for (const glm::ivec2 sample : lit_samples(g.lighting_rows, timings_.lighting_step, strides)) {
         const std::size_t y = static_cast<std::size_t>(sample.x) * kLightingTexels + 29 / 4;  // float 29: texel 7's second

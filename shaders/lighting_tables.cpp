@@ -171,8 +171,9 @@ std::array<double, 9> own_cluster_direct(double tau, double rho) {
     std::array<double, 9> o{};
     for (int q = 0; q <= n; ++q) {
         const double d = kPi * q / n;
-        const double c = std::cos(d), s = std::sin(d);
-        const double path = std::max(-rho * c + std::sqrt(std::max(1.0 - rho * rho * s * s, 0.0)), 0.0);
+        const double c = std::cos(d);
+        // The chord as the shaders compute it (float: its rounding, ~1e-7 of a radius, is far below the table's error).
+        const double path = glsl::own_cluster_path(float(rho), float(c), float(std::sin(d)));
         const double w = (q == 0 || q == n ? 0.5 : 1.0) * std::exp(-tau * path);
         double prev = 1.0, cur = c;  // cos 0Δ, cos Δ
         o[0] += w;
