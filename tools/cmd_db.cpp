@@ -47,6 +47,10 @@ void add_db(CLI::App& root) {
     build->add_option("--light-samples", bo->b.params.grids.light_samples, "θl samples projected onto the Fourier basis (default 48)");
     build->add_option("--kappa", bo->b.params.tracer.kappa, "Opacity per unit density per λ of path (default 0.6)");
     build->add_option("--phong-exponent", bo->b.params.tracer.exponent, "Phong exponent of the in-plane reflectance (default 16)");
+    build->add_option("--smoothing", bo->b.params.tracer.smoothing_ratio,
+                      "Width of the Gaussian that smooths each array (004 §5.1), in strand Gaussian widths λ; 0 = none "
+                      "(default 0; the paper's is 1.5: docs/quality.md \"Fibre detail\" measures both)")
+        ->check(CLI::Range(0.0, 16.0));
     build->add_flag("--light-attenuation", bo->b.params.tracer.light_attenuation,
                     "Attenuate the light along its in-plane path to each sample (self-shadow in the sector; default off)");
     build->add_flag("--float", bo->use_float, "Store float32 records instead of half floats (default half)");

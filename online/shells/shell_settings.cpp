@@ -113,7 +113,7 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(quality);
     t.push_back(real_param<S>("kappa_shadow", "per unit of summed alpha", 0.0, std::numeric_limits<double>::infinity(),
                               "004 eq. 12's within-cluster shadow kappa_shadow", [](auto& s) -> auto& { return s.kappa_shadow; }));
-    t.push_back(int_param<S>("neighbours", 1, kMaxShellNeighbours, "records blended per sector on the GPU",
+    t.push_back(int_param<S>("neighbours", 1, kMaxShellNeighbours, "records blended per sector on the GPU (1: the nearest alone)",
                              [](auto& s) -> auto& { return s.neighbours; }));
     t.push_back(int_param<S>("debug", 0, 4, "0 shaded, 1 alpha only, 2 unlit re, 3 lighting C_0 alpha, 4 shadow AOV",
                              [](auto& s) -> auto& { return s.debug; }));

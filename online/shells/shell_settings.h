@@ -46,7 +46,10 @@ struct ShellSettings {
     // own tilts, measured from its strands at every lighting sample (ShellStats::tangent_spread is their RMS);
     // > 0, a ring of this RMS angle (radians) instead; 0 lights every fibre as if it lay along the axis.
     float tangent_spread = -1.0f;
-    int neighbours = 2;             // records blended per sector on the GPU, 1..kMaxShellNeighbours
+    // Records blended per sector on the GPU, 1..kMaxShellNeighbours: 1 draws the nearest record alone, which keeps its
+    // fibres' contrast; docs/quality.md ("Fibre detail") chose it by the detail ratio and the blurred PSNR against coif
+    // reference.
+    int neighbours = 1;
     int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
     glm::vec3 background = kDefaultBackground;  // linear RGB behind the hair
     int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact, weighted: render() averages round(√samples)² shifted frames
@@ -89,7 +92,7 @@ struct ShellSettings {
     int kbuffer_slots = 8;
 };
 // Quality presets (issue 18): named sets of the choices that trade the image against time. `full` is the reference of
-// the others: every lighting sample, two records per sector, re to its second harmonic, the fibres' measured tangents,
+// the others: every lighting sample, the nearest record per sector, re to its second harmonic, the fibres' measured tangents,
 // exact compositing. docs/renderer.md ("Quality presets") has each one's frame time and its error against full; the
 // default (kDefaultQuality, ShellSettings' own values) is the fastest within blurred PSNR ≥ 35 dB, detail ratio in
 // [0.9, 1.1] and radiance ratio in [0.97, 1.03] of full.
@@ -116,13 +119,13 @@ inline constexpr QualityPreset kQualityPresets[] = {
      "lights carrying 10 % of each sample's light skipped",
      Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4},
     {Quality::high, "high",
-     "exact compositing, two records per sector, half the lighting samples where the clusters are smooth, meshes "
+     "exact compositing, one record per sector, half the lighting samples where the clusters are smooth, meshes "
      "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped (the "
      "default)",
-     Compositing::exact, 2, 2, 2, false, 24.0f, 0.05f, 8},
-    {Quality::full, "full", "exact compositing, two records per sector, every lighting sample, full meshes, every light: the "
+     Compositing::exact, 1, 2, 2, false, 24.0f, 0.05f, 8},
+    {Quality::full, "full", "exact compositing, one record per sector, every lighting sample, full meshes, every light: the "
                             "reference of the others",
-     Compositing::exact, 2, 2, 1, false, 0.0f, 0.0f, 8},
+     Compositing::exact, 1, 2, 1, false, 0.0f, 0.0f, 8},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);

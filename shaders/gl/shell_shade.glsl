@@ -40,7 +40,7 @@
 #include "shaders/gl/record_atlas.glsl"
 
 #ifndef SHELL_NEIGHBOURS
-#define SHELL_NEIGHBOURS 2
+#define SHELL_NEIGHBOURS 1
 #endif
 #ifndef SHELL_LIGHTING
 #define SHELL_LIGHTING 1

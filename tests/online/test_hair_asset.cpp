@@ -97,8 +97,10 @@ TEST(HairAsset, HoldsOnlyTheRecordsItsSectorsUseAndDrawsAsTheWholeDatabase) {
     std::printf("subset atlas (%zu records) vs the whole database's (%zu): max |diff| %.3g, mean value %.3g\n",
                 c.atlas.mean_alpha.size(), test_db().size(), diff, mean);
     // The texels are the same; only the atlas's size, and with it the rounding of the normalised fetch coordinate,
-    // differs: within 1e-3 of the mean (in practice 0).
-    EXPECT_LE(diff, 1e-3 * mean);
+    // differs. The bilinear filter weighs texels to 1/256 of a texel, so a coordinate rounded the other way moves a
+    // weight by 1/256, and the unsmoothed records (offline/planar_tracer.h) step by up to their range from one texel
+    // to the next: measured 1.3e-3 of the mean at one pixel (0 with the records smoothed at 1.5 λ); bound 3e-3.
+    EXPECT_LE(diff, 3e-3 * mean);
 }
 
 TEST(HairAsset, ACookThatKeepsWhatAnEditDidNotChangeIsTheSameCook) {
