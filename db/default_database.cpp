@@ -1,17 +1,12 @@
 #include "db/default_database.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <ostream>
 #include <string>
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
-#include "models/core/error.h"
+#include "models/core/atomic_file.h"
 #include "models/core/parallel.h"
 
 namespace coif {
@@ -40,18 +35,9 @@ HrirDatabase open_database_or_default(const std::filesystem::path& path, std::os
     // Processes that want the default database at once (tests run in parallel, two commands started together) take
     // turns: the first builds it while holding this lock, the others wait for it and open what it built, rather than
     // stopping at the output's own lock (atomic_file.h OutputLock) as a second writer of one file does.
-    const std::filesystem::path turn = cached.string() + ".building";
-    const int fd = ::open(turn.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-    if (fd < 0) throw Error(turn.string(), "", "cannot create the default database's lock file");
-    struct Unlock {
-        int fd;
-        ~Unlock() { ::close(fd); }  // closing releases the flock
-    } unlock{fd};
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const WaitingLock turn(cached.string() + ".building", [log] {
         if (log) *log << "coif: another process is building the default database; waiting for it\n" << std::flush;
-        while (::flock(fd, LOCK_EX) != 0)
-            if (errno != EINTR) throw Error(turn.string(), "", "cannot lock the default database's lock file");
-    }
+    });
     if (std::filesystem::exists(cached)) {
         if (log) *log << "coif: no --db given: using the default database another process built, " << cached.string() << "\n"
                       << std::flush;

@@ -233,6 +233,21 @@ std::vector<std::byte> read_file_bytes(const fs::path& path) {
     return bytes;
 }
 
+WaitingLock::WaitingLock(const fs::path& lock_file, const std::function<void()>& before_waiting) {
+    fd_ = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd_ < 0) throw Error(lock_file, "", "cannot create this lock file: " + errno_text(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+    if (before_waiting) before_waiting();
+    while (::flock(fd_, LOCK_EX) != 0) {
+        const int e = errno;
+        if (e == EINTR) continue;
+        ::close(fd_);
+        throw Error(lock_file, "", "cannot lock this file: " + errno_text(e));
+    }
+}
+
+WaitingLock::~WaitingLock() { ::close(fd_); }  // closing releases the flock
+
 fs::path OutputLock::lock_file(const fs::path& path) {
     fs::path lock = path;
     lock += ".lock";

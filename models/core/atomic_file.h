@@ -49,6 +49,21 @@ private:
     std::shared_ptr<const void> held_;
 };
 
+// An exclusive advisory lock (flock(2)) on the file `lock_file` (created if missing), held while the object lives:
+// unlike OutputLock, a second process asking for it waits until the first lets go. For work that every process would
+// do alike, such as building a cache file: the first does it, the others then find it done. `before_waiting` is
+// called when another process holds the lock, before this one waits for it (to say so).
+class WaitingLock {
+public:
+    explicit WaitingLock(const std::filesystem::path& lock_file, const std::function<void()>& before_waiting = {});
+    ~WaitingLock();
+    WaitingLock(const WaitingLock&) = delete;
+    WaitingLock& operator=(const WaitingLock&) = delete;
+
+private:
+    int fd_ = -1;
+};
+
 // Removes the temporaries of `path` ("<stem>.tmp-<pid>-<n><ext>" in its folder) whose writing process is
 // no longer running; returns how many. Temporaries of live processes are left alone.
 std::size_t remove_stale_temporaries(const std::filesystem::path& path);

@@ -1,6 +1,6 @@
 // models/core/atomic_file.h: the output lock stops a second process at once and is shared within one
 // process; it leaves no lock file behind; taking it removes the temporaries of killed writers and keeps
-// those of running ones.
+// those of running ones. The waiting lock makes a second process wait instead.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -70,6 +70,43 @@ TEST(OutputLock, ASecondProcessIsRefusedAndTheLockFileGoesAway) {
     std::ofstream(coif::OutputLock::lock_file(out)) << "999999\n";
     EXPECT_EQ(lock_in_child(out), 0);
     EXPECT_THROW(coif::OutputLock(dir / "missing" / "a.db"), coif::Error);
+    fs::remove_all(dir);
+}
+
+// The waiting lock (the default database's builder holds one while the others wait): a second process asking for it
+// is told that it waits and gets it once the first lets go, after the first's work is done.
+TEST(WaitingLock, ASecondProcessWaitsForTheFirstAndThenGetsIt) {
+    const auto dir = coif::test::scratch_dir("waitinglock");
+    const fs::path lock = dir / "cache.db.building", done = dir / "cache.db";
+    int ready[2];
+    ASSERT_EQ(::pipe(ready), 0);
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::close(ready[0]);
+        const coif::WaitingLock held(lock);
+        char c = 'x';
+        if (::write(ready[1], &c, 1) != 1) ::_exit(2);
+        ::usleep(300 * 1000);  // the work the others wait for
+        std::ofstream(done) << "built";
+        ::_exit(0);
+    }
+    ::close(ready[1]);
+    char c = 0;
+    ASSERT_EQ(::read(ready[0], &c, 1), 1);  // the child holds the lock
+    ::close(ready[0]);
+    bool told = false;
+    {
+        const coif::WaitingLock turn(lock, [&] { told = true; });
+        EXPECT_TRUE(told);
+        EXPECT_TRUE(fs::exists(done)) << "the lock was granted before its holder finished";
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    told = false;
+    const coif::WaitingLock free_now(lock, [&] { told = true; });  // nobody holds it: no wait
+    EXPECT_FALSE(told);
+    EXPECT_THROW(coif::WaitingLock(dir / "missing" / "x.building"), coif::Error);
     fs::remove_all(dir);
 }
 
