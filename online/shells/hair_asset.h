@@ -3,11 +3,11 @@
 // (CookedShells), and its file, the `.coif` asset that `coif bake` writes and the runtime loads without the HRIR
 // database, FLANN or the style's strands. Cooking from a style is online/scene/cook.h.
 //
-// The `.coif` file, version 2. Little-endian, IEEE-754 floats, every section 8-byte aligned:
+// The `.coif` file, version 3 (3: LightingSample carries the cross-section's ellipse in its w components). Little-endian, IEEE-754 floats, every section 8-byte aligned:
 //
 //   byte 0   8  magic "COIFHAIR"
 //   byte 8   u32 format version (kHairAssetVersion)
-//   byte 12  u32 section count (20 in version 2)
+//   byte 12  u32 section count (20 in version 3)
 //   byte 16  u64 file size in bytes
 //   byte 24  u64 XXH3-64 checksum of bytes 32 … end (models/core/checksum.h)
 //   byte 32  the sections, in this order, each a u32 tag (4 ASCII characters), u32 element size in bytes, u64
@@ -33,7 +33,7 @@
 //     CPRO  4        u32 per cluster: its prototype
 //     INST 80        ShellInstance per cluster: model matrix, (first sector, cluster index, 0, 0)
 //     CCEN 12        vec3 per cluster: the axis's centre, world
-//     SAMP 96        LightingSample per cluster × lighting_rows
+//     SAMP 96        LightingSample per cluster × lighting_rows (online/shells/prepared_shells.h: the w components hold the ellipse)
 //     ATLS  1        the record atlas's RGBA8 texels, width × height × 4, row 0 first
 //     MALP  4        f32 per atlas record: mean α
 //     MA0_  4        f32 per atlas record: mean re a0
@@ -54,7 +54,7 @@
 // re_norm, so that an asset draws bit-identically to its style cooked live (both draw a CookedShells).
 //
 // Compatibility: the version changes whenever anything above changes; a reader accepts exactly the versions it
-// was written for (this one: 2) and refuses any other with an error that names both, so an asset is re-baked
+// was written for (this one: 3) and refuses any other with an error that names both, so an asset is re-baked
 // with `coif bake` after such a change. Readers never guess at a layout.
 //
 // Reading validates everything a hostile file could use to make the renderer read out of bounds: sizes, counts
@@ -77,7 +77,7 @@
 
 namespace coif {
 
-inline constexpr std::uint32_t kHairAssetVersion = 2;
+inline constexpr std::uint32_t kHairAssetVersion = 3;
 
 struct CookedShells {
     std::string name;             // the style's

@@ -125,9 +125,10 @@ void place_clusters(PreparedShells& m, const HairStyle& style, const glm::mat3& 
             const double t = static_cast<double>(r) / (m.lighting_rows - 1);
             const Frame f = shape.frame(t);
             glm::vec4 position = model * glm::vec4(glm::vec3(shape.position(t)), 1.0f);
-            position.w = static_cast<float>(cl.placement.scale * std::max(shape.a(t), shape.b(t)));
-            m.samples.push_back({position, glm::vec4(glm::normalize(rot * glm::vec3(f.tangent)), 0.0f),
-                                 glm::vec4(glm::normalize(rot * glm::vec3(f.normal)), 0.0f)});
+            position.w = static_cast<float>(cl.placement.scale * shape.a(t));
+            const float b = static_cast<float>(cl.placement.scale * shape.b(t));
+            m.samples.push_back({position, glm::vec4(glm::normalize(rot * glm::vec3(f.tangent)), b),
+                                 glm::vec4(glm::normalize(rot * glm::vec3(f.normal)), static_cast<float>(shape.theta(t)))});
         }
         const MeshRange& outer = m.meshes[p].back();
         for (std::int32_t v = 0; v < outer.vertex_count; ++v) {

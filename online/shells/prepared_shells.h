@@ -47,7 +47,10 @@ struct ShellInstance {  // shell.vert ShellInstance
     glm::uvec4 info;          // x: first sector of the prototype, y: cluster index
 };
 struct LightingSample {  // shaders/gl/lighting_samples.glsl
-    glm::vec4 position;       // world; w: the cluster's radius there
+    // The cluster's elliptic cross-section there rides in the w components: its half-axes A (position.w) and B
+    // (tangent.w), world units, along e1 = cos θ n + sin θ (t × n) and t × e1, θ in normal.w (radians;
+    // models/generalized_cylinder.h ellipse_axes), so that motion, which turns t and n, turns the ellipse too.
+    glm::vec4 position;       // world
     glm::vec4 tangent, normal;
     // How the fibres' tangents tilt about `tangent` here (measure_fibre_tilts; zero until measured): tilts are
     // vectors ⟂ tangent whose length is the angle (radians); their mean, and the principal axes a, b of their

@@ -4,9 +4,9 @@
 #define COIF_SHADERS_GL_LIGHTING_SAMPLES_GLSL
 
 struct LightingSample {
-    vec4 position;  // world; w: outer radius of the cluster at the sample (world units)
-    vec4 tangent;   // root → tip
-    vec4 normal;    // the cylinder's frame normal: the reference axis of azimuths
+    vec4 position;  // world; w: the cross-section's half-axis A (world units) along e1 = cos θ n + sin θ (t × n)
+    vec4 tangent;   // root → tip; w: the half-axis B along t × e1
+    vec4 normal;    // the cylinder's frame normal n: the reference axis of azimuths; w: θ (radians)
     vec4 tilt_mean;  // the fibres' tilts about the tangent: mean, and the axes a, b of their spread
     vec4 tilt_a;     // (shaders/lighting/fibre_tangents.glsl), vectors ⟂ tangent of length the angle
     vec4 tilt_b;

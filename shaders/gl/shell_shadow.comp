@@ -8,8 +8,8 @@
 // The light's lobe is sampled by `u_rays` rays: its centre and a ring of u_rays − 1 directions at
 // min(λ_j, 1) rad from it (a circular Gaussian exp(2(cos θ − 1)/λ²) ≈ exp(−θ²/λ²) puts its mean
 // angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays. Each ray starts where it leaves the own
-// cluster (its outer radius over the sine of the ray's angle to the axis, at most 4 radii, plus two voxels
-// for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
+// cluster (own_cluster_exit: its elliptic cross-section's radius in the ray's direction over the sine of the ray's
+// angle to the axis, at most 4 such radii, plus two voxels for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
 // the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
 // earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
 //
@@ -110,6 +110,8 @@ void main() {
     int i = cluster * u_rows + used * u_lit_step;  // the lit sample
     LightingSample s = samples[i];
     vec3 T = normalize(s.tangent.xyz);
+    vec3 n = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
+    vec3 e1_own = cos(s.normal.w) * n + sin(s.normal.w) * cross(T, n);  // the cross-section's axis of A
     vec3 l = normalize(lights[j].direction_lambda.xyz);
     float spread = min(lights[j].direction_lambda.w, 1.0);
     vec3 e1 = normalize(abs(l.x) < 0.9 ? cross(l, vec3(1.0, 0.0, 0.0)) : cross(l, vec3(0.0, 1.0, 0.0)));
@@ -122,7 +124,7 @@ void main() {
             float phi = TWO_PI * float(r - 1) / float(u_rays - 1);
             d = normalize(cos(spread) * l + sin(spread) * (cos(phi) * e1 + sin(phi) * e2));
         }
-        float start = s.position.w * own_cluster_stretch(d, T) + 2.0 * u_step;
+        float start = own_cluster_exit(d, T, e1_own, s.position.w, s.tangent.w) + 2.0 * u_step;
         vec2 depth = optical_depth(s.position.xyz + start * d, d);
         float tau = u_width * depth.x;
 #if SHADOW_BODY

@@ -49,6 +49,22 @@ COIF_FN float own_cluster_stretch(vec3 d, vec3 T) {
     return 1.0 / max(length(d - dot(d, T) * T), 0.25);
 }
 
+// How far a ray from the axis along the unit direction d runs before it leaves the own cluster, whose cross-section
+// is the ellipse of half-axes A along the unit e1 (⟂ T) and B along T × e1: the ellipse's radius in the direction of
+// d's part across the axis, 1 / √((u·e1 / A)² + (u·(T × e1) / B)²) for that unit u, times own_cluster_stretch. A flat
+// cluster is crossed along its short axis in B, not in its widest half-axis, so that the shadow pass counts the
+// neighbours beside it (docs/quality.md, "The shadow rays leave the own cluster through its ellipse").
+COIF_FN float own_cluster_exit(vec3 d, vec3 T, vec3 e1, float A, float B) {
+    vec3 across = d - dot(d, T) * T;
+    float len = length(across);
+    float stretch = own_cluster_stretch(d, T);
+    if (len < 1e-6) return max(A, B) * stretch;
+    vec3 u = across / len;
+    float x = dot(u, e1) / max(A, 1e-6);
+    float y = dot(u, cross(T, e1)) / max(B, 1e-6);
+    return stretch / sqrt(max(x * x + y * y, 1e-12));
+}
+
 COIF_FN float own_cluster_transmittance(float tau, float rho, float cos_d, float sin_d) {
     return exp(-tau * own_cluster_path(rho, cos_d, sin_d));
 }

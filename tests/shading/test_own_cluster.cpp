@@ -43,6 +43,30 @@ TEST(OwnCluster, StretchIsOneOverTheSineOfTheAngleToTheAxisAtMostFour) {
     EXPECT_FLOAT_EQ(glsl::own_cluster_stretch(T, T), 4.0f);
 }
 
+TEST(OwnCluster, RaysLeaveAFlatClusterThroughItsEllipse) {
+    // A cluster 3 wide along e1 and 0.5 along T × e1 (e2): a ray across the axis leaves it at the ellipse's radius in
+    // its direction, x²/A² + y²/B² = 1, times the stretch of its angle to the axis.
+    const vec3 T(0.0f, 1.0f, 0.0f), e1(1.0f, 0.0f, 0.0f);
+    const vec3 e2 = glm::cross(T, e1);
+    const float A = 3.0f, B = 0.5f;
+    EXPECT_NEAR(glsl::own_cluster_exit(e1, T, e1, A, B), A, 1e-5f);
+    EXPECT_NEAR(glsl::own_cluster_exit(-e2, T, e1, A, B), B, 1e-5f);
+    for (const float a : {0.3f, 1.0f, 2.0f}) {
+        const vec3 u = std::cos(a) * e1 + std::sin(a) * e2;
+        const float r = glsl::own_cluster_exit(u, T, e1, A, B);
+        const glm::vec2 at = r * glm::vec2(std::cos(a), std::sin(a));
+        EXPECT_NEAR(at.x * at.x / (A * A) + at.y * at.y / (B * B), 1.0f, 1e-5f) << a;  // on the ellipse
+        // Tilted toward the axis by 30°: the same point of the ellipse, reached 1 / sin 60° farther along the ray.
+        const vec3 tilted = std::sin(glm::radians(60.0f)) * u + std::cos(glm::radians(60.0f)) * T;
+        EXPECT_NEAR(glsl::own_cluster_exit(tilted, T, e1, A, B), r / std::sin(glm::radians(60.0f)), 1e-4f) << a;
+    }
+    // A round cluster is left at its radius times own_cluster_stretch, as before the ellipse (the widest half-axis
+    // along the axis itself, where the stretch caps at 4).
+    EXPECT_NEAR(glsl::own_cluster_exit(glm::normalize(vec3(1.0f, 1.0f, 1.0f)), T, e1, 2.0f, 2.0f),
+                2.0f * glsl::own_cluster_stretch(glm::normalize(vec3(1.0f, 1.0f, 1.0f)), T), 1e-5f);
+    EXPECT_FLOAT_EQ(glsl::own_cluster_exit(T, T, e1, A, B), 4.0f * A);
+}
+
 // re(Δ) of the shells' layout at Δ.
 float series(vec3 c01, vec4 c23, vec2 c4, double delta) {
     double v = c01.x + c01.y * std::cos(delta) + c01.z * std::sin(delta);

@@ -49,7 +49,9 @@ TEST(PreparedShells, OneClusterHasEveryLayerSectorAndLightingRow) {
     // The lighting samples run root → tip along the axis (0, 0, 0) → (0, −10, 0), radius 1 (the ellipse's a, b).
     EXPECT_NEAR(glm::distance(glm::vec3(p.samples.front().position), glm::vec3(0.0f)), 0.0f, 1e-4f);
     EXPECT_NEAR(glm::distance(glm::vec3(p.samples.back().position), glm::vec3(0.0f, -10.0f, 0.0f)), 0.0f, 1e-4f);
-    EXPECT_NEAR(p.samples.front().position.w, 1.0f, 1e-5f);
+    EXPECT_NEAR(p.samples.front().position.w, 1.0f, 1e-5f);  // the cross-section's half-axes A, B and its turn θ
+    EXPECT_NEAR(p.samples.front().tangent.w, 1.0f, 1e-5f);
+    EXPECT_NEAR(p.samples.front().normal.w, 0.0f, 1e-6f);
     EXPECT_NEAR(p.samples.front().tangent.y, -1.0f, 1e-4f);
     EXPECT_NEAR(glm::distance(p.cluster_centre[0], glm::vec3(0.0f, -5.0f, 0.0f)), 0.0f, 1e-4f);
     // The outer layer's bounds: the cylinder of radius 1 around the axis, as a polygon of 16 sides
@@ -106,6 +108,37 @@ TEST(PreparedShells, InstancesShareTheirPrototypeAndFollowTheirPlacement) {
     EXPECT_NEAR(glm::distance(glm::vec3(tip.position), glm::vec3(5.0f, -10.0f, 0.0f)), 0.0f, 1e-4f);
     EXPECT_GE(p.bounds_max.x, 5.98f);
     EXPECT_LE(p.bounds_max.x, 6.0f + 1e-4f);
+}
+
+TEST(PreparedShells, LightingSamplesCarryTheCrossSectionsEllipse) {
+    // A flat cluster (A 2, B 0.5) whose ellipse turns by 90° from root to tip, placed by an instance turned 90° about y
+    // and scaled by 1.5: each sample's e1 as the shadow pass builds it, cos θ n + sin θ (t × n), is the placed shape's
+    // own first ellipse axis, and A, B are in world units (shaders/gl/shell_shadow.comp, own_cluster_exit).
+    const char* text = R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [1, -5, 0], [0, -10, 1]], "a": [2.0], "b": [0.5],
+                    "theta_deg": [0, 45, 90], "density": {"kind": "uniform", "value": 0.5}},
+                   {"name": "c1", "instance_of": "c0",
+                    "transform": {"scale": 1.5, "rotation": [0.70710678, 0, 0.70710678, 0], "translation": [5, 0, 0]}}]})";
+    const HairStyle style = parse_style(text, "<flat cluster>");
+    const PreparedShells p = prepare_shells(style, test_index(), test_atlas().mean_alpha, glm::mat3(1.0f));
+    ASSERT_EQ(p.clusters(), 2u);
+    const std::size_t rows = static_cast<std::size_t>(p.lighting_rows);
+    for (std::size_t c = 0; c < 2; ++c) {
+        const Cluster& cl = style.clusters[c];
+        const glm::mat3 turn = glm::mat3_cast(glm::quat(cl.placement.rotation));
+        for (std::size_t r = 0; r < rows; ++r) {
+            const LightingSample& q = p.samples[c * rows + r];
+            const double t = static_cast<double>(r) / static_cast<double>(rows - 1);
+            const glm::vec3 T = glm::normalize(glm::vec3(q.tangent));
+            const glm::vec3 n = glm::normalize(glm::vec3(q.normal) - glm::dot(glm::vec3(q.normal), T) * T);
+            const glm::vec3 e1 = std::cos(q.normal.w) * n + std::sin(q.normal.w) * glm::cross(T, n);
+            const glm::vec3 want = glm::normalize(turn * glm::vec3(cl.shape->ellipse_axes(t)[0]));
+            EXPECT_NEAR(glm::distance(e1, want), 0.0f, 1e-4f) << c << " " << r;
+            EXPECT_NEAR(q.position.w, cl.placement.scale * 2.0, 1e-5) << c << " " << r;
+            EXPECT_NEAR(q.tangent.w, cl.placement.scale * 0.5, 1e-5) << c << " " << r;
+        }
+    }
 }
 
 TEST(PreparedShells, PlacingAgainMovesOnlyTheClusters) {
