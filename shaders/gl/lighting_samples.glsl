@@ -13,4 +13,12 @@ struct LightingSample {
 };
 layout(std430, binding = 2) readonly buffer Samples { LightingSample samples[]; };
 
+// The frame normal made ⟂ T (T the sample's normalised tangent): the reference axis of azimuths.
+vec3 sample_frame_normal(LightingSample s, vec3 T) { return normalize(s.normal.xyz - dot(s.normal.xyz, T) * T); }
+// The cross-section's axis of A, e1 = cos θ n + sin θ (T × n).
+vec3 sample_ellipse_axis(LightingSample s, vec3 T) {
+    vec3 n = sample_frame_normal(s, T);
+    return cos(s.normal.w) * n + sin(s.normal.w) * cross(T, n);
+}
+
 #endif

@@ -48,7 +48,7 @@ void main() {
     HairParams hp = u_hair;
     if (u_absorption_on != 0) hp.sigma_a = texelFetch(u_absorption, ivec2(row, cluster), 0).rgb;
     vec3 T = normalize(s.tangent.xyz);
-    vec3 r0 = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
+    vec3 r0 = sample_frame_normal(s, T);
     vec3 V = normalize(u_eye - s.position.xyz);
     vec3 C[5];
     vec3 S[5];

@@ -110,8 +110,7 @@ void main() {
     int i = cluster * u_rows + used * u_lit_step;  // the lit sample
     LightingSample s = samples[i];
     vec3 T = normalize(s.tangent.xyz);
-    vec3 n = normalize(s.normal.xyz - dot(s.normal.xyz, T) * T);
-    vec3 e1_own = cos(s.normal.w) * n + sin(s.normal.w) * cross(T, n);  // the cross-section's axis of A
+    vec3 e1_own = sample_ellipse_axis(s, T);
     vec3 l = normalize(lights[j].direction_lambda.xyz);
     float spread = min(lights[j].direction_lambda.w, 1.0);
     vec3 e1 = normalize(abs(l.x) < 0.9 ? cross(l, vec3(1.0, 0.0, 0.0)) : cross(l, vec3(0.0, 1.0, 0.0)));
