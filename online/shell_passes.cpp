@@ -294,7 +294,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
 // ---- ShellsPass ------------------------------------------------------------------------------------
 
 const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& L,
-                                           DepthTest depth) {
+                                           DepthTest depth, bool fold) {
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
     // Every lighting_step-th row lit is still a subset of the mesh rows, so the per-vertex read stays exact.
@@ -303,7 +303,8 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
                                      "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
                                      "SHELL_FOURIER " + std::to_string(s.fourier_order),
                                      std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
-                                     "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};
+                                     "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth)),
+                                     std::string("SHELL_FOLD ") + (fold ? "1" : "0")};
     if (lighting == 2) {  // the per-fragment reference lights every fragment as the lighting pass lights a sample
         const std::vector<std::string> variant = LightingPass::variant_defines(s);
         defines.insert(defines.end(), variant.begin(), variant.end());
@@ -396,46 +397,60 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     } else if (!floor_only) {
         program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth);
     }
-    const Program& prog = *program;
-    prog.use();
+    // The fold's program (ShellSettings::fold_level): the same but for SHELL_FOLD; the k-buffer's depth pass draws the
+    // same meshes with its own.
+    const bool can_fold = !floor_only && s.fold_level < kLodLevels && weighted && !s.lighting_per_fragment;
+    const Program* fold_program = program;
+    if (can_fold && !depth_pass) fold_program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth, true);
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
     const glm::mat4 vp = pixel_shift(d.jitter, width, height) * view.projection * view.view;
-    glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
-    if (depth != DepthTest::none) {  // (never for the floor)
-        glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
-        glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
-        // The lists' and the weighted targets' framebuffer is the viewport's size; a blended draw goes straight into
-        // the host's framebuffer.
-        const glm::ivec2 offset = own_targets ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
-        glUniform2i(prog.uniform("u_scene_depth_offset"), offset.x, offset.y);
-    }
-    if (depth_pass) {
-        glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
-    } else if (!floor_only) {
-        glBindTextureUnit(0, gpu.atlas.id());
-        glBindTextureUnit(1, gpu.lighting.id());
-        glUniform1i(prog.uniform("u_records"), 0);
-        glUniform1i(prog.uniform("u_lighting"), 1);
-        glUniform1i(prog.uniform("u_tiles_per_row"), gpu.tiles_per_row);
-        glUniform2f(prog.uniform("u_atlas_inv_size"), 1.0f / gpu.atlas_width, 1.0f / gpu.atlas_height);
-        glUniform1i(prog.uniform("u_views"), gpu.views);
-        glUniform4fv(prog.uniform("u_atlas_lo"), kAtlasParts, &gpu.atlas_lo[0].x);
-        glUniform4fv(prog.uniform("u_atlas_scale"), kAtlasParts, &gpu.atlas_scale[0].x);
-        glUniform1i(prog.uniform("u_hrir_length"), gpu.hrir_length);
-        glUniform1i(prog.uniform("u_lighting_rows"), gpu.lighting_rows);
-        glUniform1i(prog.uniform("u_lighting_used"), lit_rows(gpu.lighting_rows, s.lighting_step));
-        glUniform1i(prog.uniform("u_lighting_height"), static_cast<GLint>(gpu.clusters * kLightingTexels));
-        glUniform1i(prog.uniform("u_s_t"), L.s_t);
-        glUniform1i(prog.uniform("u_s_u"), L.s_u);
-        glUniform1i(prog.uniform("u_layers"), L.layers);
-        glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
-        glUniform1f(prog.uniform("u_re_scale"), 1.0f / gpu.re_norm);
-        glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
-        if (s.lighting_per_fragment)
-            lighting.bind_inputs(prog, gpu, s);
-        else if (s.own_cluster_shadow)
-            lighting.bind_tables(prog);  // lut_own_cluster
-    }
+    glm::vec2 depth_range{0.0f};  // the weighted compositing's eye distances (below)
+    // Every uniform of a shading program but the per-draw ones below (the program's in use after).
+    const auto bind = [&](const Program& prog) {
+        prog.use();
+        glUniformMatrix4fv(prog.uniform("u_view_projection"), 1, GL_FALSE, &vp[0][0]);
+        if (depth != DepthTest::none) {  // (never for the floor)
+            glBindTextureUnit(kSceneDepthUnit, t.scene_depth);
+            glUniform1i(prog.uniform("u_scene_depth"), kSceneDepthUnit);
+            // The lists' and the weighted targets' framebuffer is the viewport's size; a blended draw goes straight into
+            // the host's framebuffer.
+            const glm::ivec2 offset = own_targets ? glm::ivec2(t.viewport.x, t.viewport.y) : glm::ivec2(0);
+            glUniform2i(prog.uniform("u_scene_depth_offset"), offset.x, offset.y);
+        }
+        if (depth_pass) {
+            glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
+        } else if (!floor_only) {
+            glBindTextureUnit(0, gpu.atlas.id());
+            glBindTextureUnit(1, gpu.lighting.id());
+            glUniform1i(prog.uniform("u_records"), 0);
+            glUniform1i(prog.uniform("u_lighting"), 1);
+            glUniform1i(prog.uniform("u_tiles_per_row"), gpu.tiles_per_row);
+            glUniform2f(prog.uniform("u_atlas_inv_size"), 1.0f / gpu.atlas_width, 1.0f / gpu.atlas_height);
+            glUniform1i(prog.uniform("u_views"), gpu.views);
+            glUniform4fv(prog.uniform("u_atlas_lo"), kAtlasParts, &gpu.atlas_lo[0].x);
+            glUniform4fv(prog.uniform("u_atlas_scale"), kAtlasParts, &gpu.atlas_scale[0].x);
+            glUniform1i(prog.uniform("u_hrir_length"), gpu.hrir_length);
+            glUniform1i(prog.uniform("u_lighting_rows"), gpu.lighting_rows);
+            glUniform1i(prog.uniform("u_lighting_used"), lit_rows(gpu.lighting_rows, s.lighting_step));
+            glUniform1i(prog.uniform("u_lighting_height"), static_cast<GLint>(gpu.clusters * kLightingTexels));
+            glUniform1i(prog.uniform("u_s_t"), L.s_t);
+            glUniform1i(prog.uniform("u_s_u"), L.s_u);
+            glUniform1i(prog.uniform("u_layers"), L.layers);
+            glUniform1f(prog.uniform("u_kappa_shadow"), s.kappa_shadow);
+            glUniform1f(prog.uniform("u_re_scale"), 1.0f / gpu.re_norm);
+            glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
+            if (s.lighting_per_fragment)
+                lighting.bind_inputs(prog, gpu, s);
+            else if (s.own_cluster_shadow)
+                lighting.bind_tables(prog);  // lut_own_cluster
+        }
+        if (exact) {
+            glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));
+            glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
+        }
+        if (kbuffer) glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
+        if (weighted && !depth_pass) glUniform2f(prog.uniform("u_depth_range"), depth_range.x, depth_range.y);
+    };
     // Clusters wholly outside the view make no fragment: skipped, the image is the same. The weighted compositing
     // normalises its fragments' eye distances to the range of the clusters' boxes.
     std::vector<char> visible(shells.clusters(), 1);
@@ -457,7 +472,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         if (weighted && !depth_pass) {
             // A box's nearest corner can be nearer than any fragment (or behind the eye, within the box): clamped at 0.
             nearest = farthest > 0.0f ? std::max(0.0f, nearest) : 0.0f;
-            glUniform2f(prog.uniform("u_depth_range"), nearest, 1.0f / std::max(farthest - nearest, 1e-6f));
+            depth_range = {nearest, 1.0f / std::max(farthest - nearest, 1e-6f)};
         }
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.instances.id());
@@ -471,8 +486,6 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         } else {
             lists_->bind();  // the shadow and lighting passes of this instance used the same units
         }
-        glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));
-        glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
         glDisable(GL_BLEND);
     } else if (weighted) {  // accumulate every fragment, in any order (online/weighted_blend.h)
         if (d.first) {
@@ -483,7 +496,6 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         }
         if (kbuffer) {
             weighted_->bind_slots();
-            glUniform1f(prog.uniform("u_distance_scale"), d.distance_scale);
             if (depth_pass) {  // depths alone: no colour output, no blending
                 glDisable(GL_BLEND);
                 glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -507,36 +519,74 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         for (std::size_t c = 0; c < order.size(); ++c) dist[c] = glm::distance(view.eye, shells.cluster_centre[c]);
         std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
     }
-    const GLint layer_loc = floor_only ? -1 : prog.uniform("u_layer");
-    const GLint layers_loc = floor_only ? -1 : prog.uniform("u_layers");
-    const GLint rho_loc = floor_only || !s.own_cluster_shadow ? -1 : prog.uniform("u_layer_rho");
+    bind(*program);
+    // The uniforms each draw sets, of the program in use.
+    struct Locations {
+        GLint layer, layers, rho, inner_rho, fold_inner;
+    };
+    const auto locations = [&](const Program& p) {
+        return Locations{floor_only ? -1 : p.uniform("u_layer"), floor_only ? -1 : p.uniform("u_layers"),
+                         floor_only ? -1 : p.uniform("u_layer_rho"),
+                         floor_only || depth_pass ? -1 : p.uniform("u_inner_rho"),
+                         floor_only || depth_pass ? -1 : p.uniform("u_fold_inner")};
+    };
+    Locations loc = locations(*program);
     DiskLayout own = L;  // the drawn cluster's prototype's layout: its own layer count
-    const auto draw_layer = [&](std::size_t c, int j) {
+    // Layer j of cluster c; folded, with layer j − 1 inside it when j > 0 (fold_inner 1) or alone (the innermost of an odd
+    // count).
+    const auto draw_layer = [&](std::size_t c, int j, bool folded) {
         const MeshRange& r = gpu.lod_ranges[shells.cluster_proto[c]][static_cast<std::size_t>(j)][lod ? static_cast<std::size_t>(level[c]) : 0];
         triangles_ += static_cast<std::size_t>(r.count) / 3;
-        if (layer_loc >= 0) glUniform1i(layer_loc, j);
-        if (rho_loc >= 0) glUniform1f(rho_loc, static_cast<float>(own.layer_v(j + 1)));  // the layer mesh's own surface
+        if (loc.layer >= 0) glUniform1i(loc.layer, j);
+        if (loc.rho >= 0) glUniform1f(loc.rho, static_cast<float>(own.layer_v(j + 1)));  // the layer mesh's own surface
+        if (folded && loc.inner_rho >= 0) glUniform1f(loc.inner_rho, static_cast<float>(own.layer_v(j)));
+        if (folded && loc.fold_inner >= 0) glUniform1f(loc.fold_inner, j > 0 ? 1.0f : 0.0f);
         glDrawElementsInstancedBaseVertexBaseInstance(
             GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
             static_cast<GLuint>(c));
     };
+    const auto set_layers = [&](std::size_t c) {
+        const int layers = static_cast<int>(shells.meshes[shells.cluster_proto[c]].size());
+        if (layers != own.layers) {
+            own.layers = layers;
+            if (loc.layers >= 0) glUniform1i(loc.layers, layers);
+        }
+        return layers;
+    };
     drawn_ = 0;
     triangles_ = 0;
     at_level_ = {};
+    std::vector<std::size_t> folded;  // drawn after the others, with the fold's program
     for (std::size_t c : order) {
         if (!visible[c]) continue;
         ++drawn_;
         ++at_level_[lod ? static_cast<std::size_t>(level[c]) : 0];
-        const int layers = static_cast<int>(shells.meshes[shells.cluster_proto[c]].size());
-        if (layers != own.layers) {
-            own.layers = layers;
-            if (layers_loc >= 0) glUniform1i(layers_loc, layers);
+        if (can_fold && level[c] >= s.fold_level) {
+            folded.push_back(c);
+            continue;
         }
+        const int layers = set_layers(c);
         glCullFace(GL_FRONT);  // back faces (far side, seen through the core): outer → inner
-        for (int j = layers - 1; j >= 0; --j) draw_layer(c, j);
+        for (int j = layers - 1; j >= 0; --j) draw_layer(c, j, false);
         glCullFace(GL_BACK);   // front faces: inner → outer
-        for (int j = 0; j < layers; ++j) draw_layer(c, j);
+        for (int j = 0; j < layers; ++j) draw_layer(c, j, false);
+    }
+    if (!folded.empty()) {
+        if (fold_program != program) {
+            bind(*fold_program);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.samples.id());  // the clusters' axes (shell.vert)
+            loc = locations(*fold_program);
+            own.layers = L.layers;
+        }
+        for (std::size_t c : folded) {
+            const int layers = set_layers(c);
+            // Pairs (layers − 1, layers − 2), …: the outer layer's mesh drawn; an odd count's innermost alone.
+            glCullFace(GL_FRONT);
+            for (int j = layers - 1; j >= 0; j -= 2) draw_layer(c, j, true);
+            glCullFace(GL_BACK);
+            for (int j = (layers - 1) % 2; j < layers; j += 2) draw_layer(c, j, true);
+        }
     }
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);

@@ -217,8 +217,9 @@ private:
     // level_ for a frame seen from `view`, `height` pixels high, each cluster's box `boxes` (ShellSettings::lod_pixels).
     void pick_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, std::span<const ClusterBox> boxes,
                      int height, float budget_px, std::vector<int>& levels) const;
+    // `fold`: the program that draws two layers from the outer one's mesh (ShellSettings::fold_level).
     const Program& shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
-                                   DepthTest depth);
+                                   DepthTest depth, bool fold = false);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
     std::map<std::string, std::unique_ptr<Program>> depth_programs_;  // the k-buffer's depth pass, by its defines
     std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use

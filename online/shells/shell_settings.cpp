@@ -69,11 +69,11 @@ namespace {
 template <class Settings>
 auto preset_choices(Settings& s) {
     return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels, s.light_cull,
-                    s.kbuffer_slots);
+                    s.kbuffer_slots, s.fold_level);
 }
 auto preset_choices(const QualityPreset& p) {
     return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f, p.lod_pixels,
-                      p.light_cull, p.kbuffer_slots);
+                      p.light_cull, p.kbuffer_slots, p.fold_level);
 }
 }  // namespace
 
@@ -97,7 +97,7 @@ ParamTable<ShellSettings> make_table() {
     // nothing.
     Param<S> quality{"quality", ParamKind::choice, "", 0, 0, false,
                      "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
-                     "tangent_spread_deg, lod_pixels, light_cull, kbuffer_slots); later keys override it",
+                     "tangent_spread_deg, lod_pixels, light_cull, kbuffer_slots, fold_level); later keys override it",
                      {}, {}, {}, {}};
     quality.names = quality_names();
     quality.names.emplace_back("custom");
@@ -151,6 +151,10 @@ ParamTable<ShellSettings> make_table() {
                               "level of detail: draw each cluster with the coarsest mesh whose triangles' edges project "
                               "within this many pixels (0: full meshes)",
                               [](auto& s) -> auto& { return s.lod_pixels; }));
+    t.push_back(int_param<S>("fold_level", 0, 3,
+                             "clusters at this level of detail or coarser draw their layers in pairs, each pair from "
+                             "its outer layer's mesh (3: never)",
+                             [](auto& s) -> auto& { return s.fold_level; }));
     t.push_back(int_param<S>("kbuffer_slots", 1, kMaxKBufferSlots,
                              "kbuffer compositing: the nearest fragments of each pixel composited exactly",
                              [](auto& s) -> auto& { return s.kbuffer_slots; }));

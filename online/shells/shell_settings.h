@@ -81,6 +81,13 @@ struct ShellSettings {
     // 2nd or 4th row along t, as the level joins them, when the sums are read per vertex): the image is the same. false
     // lights every sample whatever the levels (tests).
     bool lod_lighting = true;
+    // The layer count's level of detail: clusters drawn at this level of detail or a coarser one draw their layers in
+    // pairs, each pair from its outer layer's mesh, the fragment shading both layers with their own records (the inner
+    // one where the view ray meets it) and compositing them (shell_shade.glsl SHELL_FOLD): half the triangles and
+    // fragments. 3 (kLodLevels): never. With the weighted and k-buffer compositings only: in the exact lists a pair at one
+    // depth moves the inner layer in front of other clusters' fibres that lie between the two (3 % darker seen from
+    // behind). docs/renderer.md ("Level of detail") measures the cost and the error.
+    int fold_level = 3;
     // Lights left out per lighting sample (shaders/gl/shell_lighting.comp): each light's share of the sample's light is
     // estimated by its power times what reaches the sample (T̃ and the forward-scattered share of the shadow pass), and
     // the dimmest lights whose estimates sum to at most this fraction of the sample's total are skipped; 0 lights every
@@ -107,25 +114,27 @@ struct QualityPreset {
     float lod_pixels;  // ShellSettings::lod_pixels
     float light_cull;  // ShellSettings::light_cull
     int kbuffer_slots; // ShellSettings::kbuffer_slots (with the k-buffer compositing)
+    int fold_level;    // ShellSettings::fold_level
 };
 inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::low, "low", "weighted blended compositing (bounded memory), one record per sector, re's first harmonic, a "
                           "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis, "
-                          "coarse meshes, the dimmest lights carrying 20 % of each sample's light skipped (previews, dragging)",
-     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f, 8},
+                          "coarse meshes, layers drawn in pairs, the dimmest lights carrying 20 % of each sample's light skipped "
+                          "(previews, dragging)",
+     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f, 8, 0},
     {Quality::medium, "medium",
      "k-buffer compositing (the nearest 4 fragments of each pixel exact; bounded memory), one record per sector, re's "
-     "first harmonic, a quarter of the lighting samples where the clusters are smooth, coarser meshes, the dimmest "
-     "lights carrying 10 % of each sample's light skipped",
-     Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4},
+     "first harmonic, a quarter of the lighting samples where the clusters are smooth, coarser meshes, layers drawn in "
+     "pairs, the dimmest lights carrying 10 % of each sample's light skipped",
+     Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4, 0},
     {Quality::high, "high",
      "exact compositing, one record per sector, half the lighting samples where the clusters are smooth, meshes "
      "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped (the "
      "default)",
-     Compositing::exact, 1, 2, 2, false, 24.0f, 0.05f, 8},
+     Compositing::exact, 1, 2, 2, false, 24.0f, 0.05f, 8, 3},
     {Quality::full, "full", "exact compositing, one record per sector, every lighting sample, full meshes, every light: the "
                             "reference of the others",
-     Compositing::exact, 1, 2, 1, false, 0.0f, 0.0f, 8},
+     Compositing::exact, 1, 2, 1, false, 0.0f, 0.0f, 8, 3},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);

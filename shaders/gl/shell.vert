@@ -36,6 +36,18 @@ out vec4 v_L6;
 out float v_L7;  // texel 7's x: the lights' mean own_cluster_stretch (shell_lighting.comp)
 #endif
 
+#if defined(SHELL_FOLD) && SHELL_FOLD == 1
+// The folded inner layer is found where the view ray meets it (shell_shade.glsl): the vertex's offset from its cluster's
+// axis and the cross-section's ellipse (axis e1, half-axes A, B), from the lighting samples around its t.
+#include "shaders/gl/lighting_samples.glsl"
+#if !defined(SHELL_LIGHTING) || SHELL_LIGHTING != 1
+uniform int u_lighting_rows;
+#endif
+out vec3 v_axis_offset;
+out vec3 v_ellipse_e1;
+out vec2 v_ellipse_ab;
+#endif
+
 void main() {
     ShellInstance inst = instances[a_cluster];
     vec4 world = inst.model * vec4(a_position, 1.0);
@@ -55,6 +67,19 @@ void main() {
     v_L5 = lighting_fetch(a_texcoord.y, inst.info.y, 5);
     v_L6 = lighting_fetch(a_texcoord.y, inst.info.y, 6);
     v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).x;
+#endif
+#if defined(SHELL_FOLD) && SHELL_FOLD == 1
+    {
+        float tr = clamp(a_texcoord.y, 0.0, 1.0) * float(u_lighting_rows - 1);
+        int row = min(int(tr), u_lighting_rows - 2);
+        float f = tr - float(row);
+        int first = int(inst.info.y) * u_lighting_rows + row;
+        LightingSample s0 = samples[first], s1 = samples[first + 1];
+        vec3 t0 = normalize(s0.tangent.xyz), t1 = normalize(s1.tangent.xyz);
+        v_axis_offset = world.xyz - mix(s0.position.xyz, s1.position.xyz, f);
+        v_ellipse_e1 = mix(sample_ellipse_axis(s0, t0), sample_ellipse_axis(s1, t1), f);
+        v_ellipse_ab = mix(vec2(s0.position.w, s0.tangent.w), vec2(s1.position.w, s1.tangent.w), f);
+    }
 #endif
     gl_Position = u_view_projection * world;
 }

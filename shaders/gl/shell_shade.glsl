@@ -30,6 +30,7 @@
 //                     record, 2 and 3 two, 4 all three; the dropped ones are zero
 //   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none
 //   SHELL_TANGENTS    with SHELL_LIGHTING 2: the fibres' tangents each light is evaluated at (shell_light.glsl)
+//   SHELL_FOLD        1: two layers from the outer one's mesh (ShellSettings::fold_level, shell_shade_pair below)
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -53,6 +54,9 @@
 #endif
 #ifndef SHELL_OWN
 #define SHELL_OWN 1
+#endif
+#ifndef SHELL_FOLD
+#define SHELL_FOLD 0
 #endif
 #if SHELL_OWN == 1
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
@@ -95,6 +99,13 @@ uniform int u_layers;
 uniform int u_layer;
 uniform float u_kappa_shadow;
 uniform float u_layer_rho;         // this layer mesh's surface v_{j+1}, in cluster radii (SHELL_OWN)
+#if SHELL_FOLD == 1
+centroid in vec3 v_axis_offset;    // from the cluster's axis (shell.vert)
+centroid in vec3 v_ellipse_e1;     // the cross-section's axis of A
+centroid in vec2 v_ellipse_ab;     // its half-axes A, B
+uniform float u_inner_rho;         // the folded inner layer's surface v_j
+uniform float u_fold_inner;        // 1: the layer inside u_layer is folded into this draw; 0: none (an odd count's last)
+#endif
 uniform float u_re_scale;          // 1 / re_norm
 uniform vec3 u_eye;
 
@@ -138,7 +149,9 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
 #endif
 }
 
-vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info) {
+// One layer `layer` (its mesh's surface at `rho` cluster radii) of the HSV at this fragment.
+vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info, int layer,
+                      float rho) {
     vec3 T = normalize(tangent);
     vec3 r = sector_radial(normalize(normal), T);
     vec3 V = normalize(u_eye - position);
@@ -152,7 +165,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     int k = min(int(uu), u_s_u - 1);
     float x = uu - float(k);
     uint base = info.x;
-    uint top = base + uint((i * u_layers + u_layer) * u_s_u + k);
+    uint top = base + uint((i * u_layers + layer) * u_s_u + k);
     uint bottom = top + uint(u_layers * u_s_u);
 
     float view = theta_v / TWO_PI * float(u_views);
@@ -219,7 +232,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), u_layer_rho, t0.yzw, t1,
+        own_cluster_harmonics(tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), rho, t0.yzw, t1,
                               t2.xy, h01, h23, h4);
         float re = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
                    d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
@@ -279,7 +292,7 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(tau_r * L7, u_layer_rho, t0.yzw, t1, t2.xy, h01, h23, h4);
+        own_cluster_harmonics(tau_r * L7, rho, t0.yzw, t1, t2.xy, h01, h23, h4);
         t0.yzw = h01;
         t1 = h23;
         t2.xy = h4;
@@ -291,6 +304,59 @@ vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec
     sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
     sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
     return vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);
+#endif
+}
+
+#if SHELL_FOLD == 1
+// Two layers from the outer one's mesh (ShellSettings::fold_level): `outer`, layer u_layer shaded here, and `inner`, the
+// layer inside it (u_layer − 1, surface u_inner_rho; none when u_fold_inner is 0) shaded where this fragment's view ray
+// meets it.
+//
+// In the cross-section's coordinates scaled by its half-axes (x along e1 over A, y along e2 = T × e1 over B) the layers
+// are circles of radii u_layer_rho and u_inner_rho, and the ray's projection is a line: p the fragment, D the ray's
+// direction, c its point nearest the axis. The ray meets the inner layer at c ∓ √(ρ_i² − |c|²) D (entering on the near
+// side, leaving on the far side), at the angle u_i, where the ellipse's normal is ∝ (x / A, y / B); where |c| ≥ ρ_i it
+// passes beside the inner layer, which then adds nothing (weighed across 10 % of ρ_i against aliasing).
+void shell_shade_pair(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info, out vec4 outer,
+                      out vec4 inner) {
+    outer = shell_shade_layer(position, tangent, normal, axis_normal, texcoord, info, u_layer, u_layer_rho);
+    vec3 T = normalize(tangent);
+    vec3 e1 = normalize(v_ellipse_e1 - dot(v_ellipse_e1, T) * T);
+    vec3 e2 = cross(T, e1);
+    vec2 ab = max(v_ellipse_ab, vec2(1e-6));
+    vec2 p = vec2(dot(v_axis_offset, e1), dot(v_axis_offset, e2)) / ab;
+    // On the surface at the fragment's angle: a coarse mesh's chords lie inside it (8 columns: by up to 8 %).
+    float p_len = length(p);
+    p = p_len > 1e-6 ? p * (u_layer_rho / p_len) : vec2(u_layer_rho, 0.0);
+    vec3 ray = normalize(position - u_eye);
+    vec2 D = vec2(dot(ray, e1), dot(ray, e2)) / ab;
+    float D_len = length(D);
+    bool across = D_len > 1e-6 * u_layer_rho / max(ab.x, ab.y);
+    D = across ? D / D_len : vec2(0.0);
+    vec2 c = p - dot(p, D) * D;
+    float h = sqrt(max(u_inner_rho * u_inner_rho - dot(c, c), 0.0));
+    // Seen along the axis, the ray meets the inner layer far along it: the same side of the cluster, beside the outer.
+    vec2 pi = across ? c + (gl_FrontFacing ? -h : h) * D : p * (u_inner_rho / u_layer_rho);
+    vec3 ni = (pi.x / ab.x) * e1 + (pi.y / ab.y) * e2;
+    float ni_len = length(ni);
+    ni = ni_len > 1e-12 ? ni / ni_len : normal;
+    vec2 tc_inner = vec2(atan(pi.y, pi.x) * (1.0 / TWO_PI), texcoord.y);
+    float hit = across ? clamp((u_inner_rho - length(c)) / (0.1 * u_inner_rho) + 0.5, 0.0, 1.0) : 1.0;
+    inner = (u_fold_inner * hit) * shell_shade_layer(position, tangent, ni, axis_normal, tc_inner, info, max(u_layer - 1, 0),
+                                                     u_inner_rho);
+}
+#endif
+
+vec4 shell_shade(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info) {
+#if SHELL_FOLD == 1
+    // The pair as one fragment at the outer layer's depth (the weighted blend and the k-buffer; not the exact lists,
+    // docs/renderer.md): composited "over" in the order the eye meets them, the outer first on the near side (front
+    // faces), the inner first on the far side (back faces, seen through the core).
+    vec4 outer, inner;
+    shell_shade_pair(position, tangent, normal, axis_normal, texcoord, info, outer, inner);
+    return gl_FrontFacing ? outer + (1.0 - outer.a) * inner : inner + (1.0 - inner.a) * outer;
+#else
+    return shell_shade_layer(position, tangent, normal, axis_normal, texcoord, info, u_layer, u_layer_rho);
 #endif
 }
 
