@@ -532,15 +532,15 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     };
     Locations loc = locations(*program);
     DiskLayout own = L;  // the drawn cluster's prototype's layout: its own layer count
-    // Layer j of cluster c; folded, with layer j − 1 inside it when j > 0 (fold_inner 1) or alone (the innermost of an odd
-    // count).
-    const auto draw_layer = [&](std::size_t c, int j, bool folded) {
+    // Layer j of cluster c; with the fold's program, with layer j − 1 inside it when j > 0 (fold_inner 1) or alone (the
+    // innermost of an odd count).
+    const auto draw_layer = [&](std::size_t c, int j) {
         const MeshRange& r = gpu.lod_ranges[shells.cluster_proto[c]][static_cast<std::size_t>(j)][lod ? static_cast<std::size_t>(level[c]) : 0];
         triangles_ += static_cast<std::size_t>(r.count) / 3;
         if (loc.layer >= 0) glUniform1i(loc.layer, j);
         if (loc.rho >= 0) glUniform1f(loc.rho, static_cast<float>(own.layer_v(j + 1)));  // the layer mesh's own surface
-        if (folded && loc.inner_rho >= 0) glUniform1f(loc.inner_rho, static_cast<float>(own.layer_v(j)));
-        if (folded && loc.fold_inner >= 0) glUniform1f(loc.fold_inner, j > 0 ? 1.0f : 0.0f);
+        if (loc.inner_rho >= 0) glUniform1f(loc.inner_rho, static_cast<float>(own.layer_v(j)));
+        if (loc.fold_inner >= 0) glUniform1f(loc.fold_inner, j > 0 ? 1.0f : 0.0f);
         glDrawElementsInstancedBaseVertexBaseInstance(
             GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)), 1, r.base_vertex,
@@ -568,9 +568,9 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
         }
         const int layers = set_layers(c);
         glCullFace(GL_FRONT);  // back faces (far side, seen through the core): outer → inner
-        for (int j = layers - 1; j >= 0; --j) draw_layer(c, j, false);
+        for (int j = layers - 1; j >= 0; --j) draw_layer(c, j);
         glCullFace(GL_BACK);   // front faces: inner → outer
-        for (int j = 0; j < layers; ++j) draw_layer(c, j, false);
+        for (int j = 0; j < layers; ++j) draw_layer(c, j);
     }
     if (!folded.empty()) {
         if (fold_program != program) {
@@ -583,9 +583,9 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
             const int layers = set_layers(c);
             // Pairs (layers − 1, layers − 2), …: the outer layer's mesh drawn; an odd count's innermost alone.
             glCullFace(GL_FRONT);
-            for (int j = layers - 1; j >= 0; j -= 2) draw_layer(c, j, true);
+            for (int j = layers - 1; j >= 0; j -= 2) draw_layer(c, j);
             glCullFace(GL_BACK);
-            for (int j = (layers - 1) % 2; j < layers; j += 2) draw_layer(c, j, true);
+            for (int j = (layers - 1) % 2; j < layers; j += 2) draw_layer(c, j);
         }
     }
     glBindVertexArray(0);
