@@ -186,9 +186,7 @@ glm::vec3 ReferenceEnvironment::sample(float xi0, float xi1, float xi2, float xi
         case Kind::srbf: {
             const int j = sample_cdf(light_cdf_.data(), static_cast<int>(lights_.size()), xi0);
             const SrbfLight& l = lights_[j];
-            const float kappa = vmf_kappa(l.lambda);
-            // Inverse CDF of cos γ for exp(κ(cos γ − 1)): cos γ = 1 + log(ξ + (1 − ξ) e^{−2κ}) / κ.
-            const float cos_g = std::clamp(1.0f + std::log(xi1 + (1.0f - xi1) * std::exp(-2.0f * kappa)) / kappa, -1.0f, 1.0f);
+            const float cos_g = glsl::srbf_lobe_cos(l.lambda, xi1);
             const float sin_g = std::sqrt(std::max(0.0f, 1.0f - cos_g * cos_g)), phi = 2.0f * kPiF * xi2;
             glm::vec3 b1, b2;
             basis(l.omega, b1, b2);

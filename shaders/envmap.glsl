@@ -63,4 +63,14 @@ COIF_FN float srbf_integral(float lambda_j) {
     return ENVMAP_PI * l2 * (1.0 - exp(-4.0 / l2));
 }
 
+// G as a distribution of directions: the cosine of the angle γ from ω_j below which (toward ω_j) a fraction 1 − xi of
+// the light's energy arrives, xi ∈ (0, 1]. G ∝ exp(κ (cos γ − 1)), κ = 2 / λ_j², is uniform in the azimuth about ω_j
+// and exponential in cos γ, whose inverse CDF is cos γ = 1 + log(xi + (1 − xi) e^{−2κ}) / κ (xi = 1: ω_j itself; xi → 0:
+// −ω_j). Written without e^{κ}, which overflows a float for the narrowest lights (λ = 0.033: κ = 1836). Used by the
+// reference to sample the lights and by the shell renderer's shadow pass to stratify each light's rays.
+COIF_FN float srbf_lobe_cos(float lambda_j, float xi) {
+    float kappa = 2.0 / (lambda_j * lambda_j);
+    return clamp(1.0 + log(xi + (1.0 - xi) * exp(-2.0 * kappa)) / kappa, float(-1.0), float(1.0));
+}
+
 #endif  // COIF_SHADERS_ENVMAP_GLSL

@@ -5,9 +5,11 @@
 // along d is expected to meet, as the reference's fibres meet it. They depend on the hair, the lights and r
 // only — not on the view or the scattering parameters — so the renderer runs this pass when those change.
 //
-// The light's lobe is sampled by `u_rays` rays: its centre and a ring of u_rays − 1 directions at
-// min(λ_j, 1) rad from it (a circular Gaussian exp(2(cos θ − 1)/λ²) ≈ exp(−θ²/λ²) puts its mean
-// angle near λ); T̃ = mean exp(−τ), n = mean τ over the rays. Each ray starts where it leaves the own
+// The light's lobe is sampled by `u_rays` rays, each the direction of one of u_rays equal shares of the light's energy
+// (stratified by the lobe's own distribution, shaders/envmap.glsl srbf_lobe_cos: for a narrow light at 0.27 to 1.6 λ
+// from its centre; a wide one, λ = 2, sends 38 % of its light from the far hemisphere and three of 7 rays there);
+// T̃ = mean exp(−τ), n = mean τ over the rays. (A centre and a ring at min(λ, 1) rad, the earlier rule, lit a wide
+// light's fibres from its centre's side alone: 2–3× the reference's single scattering, docs/quality.md.) Each ray starts where it leaves the own
 // cluster (own_cluster_exit: its elliptic cross-section's radius in the ray's direction over the sine of the ray's
 // angle to the axis, at most 4 such radii, plus two voxels for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
 // the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
@@ -25,6 +27,7 @@ layout(local_size_x = 64) in;
 #define SHADOW_FILL 0
 #endif
 
+#include "shaders/envmap.glsl"
 #include "shaders/gl/lighting_samples.glsl"
 #include "shaders/lighting/luts_gl.glsl"
 #include "shaders/lighting/own_cluster.glsl"
@@ -53,7 +56,7 @@ uniform float u_body_opacity;    // optical depth per world unit through a body 
 uniform float u_body_max_depth;  // per ray
 #endif
 
-const float TWO_PI = 6.28318530718;
+const float GOLDEN_ANGLE = 2.39996322973;  // π (3 − √5): successive rays' turn about the light's axis
 
 // (the fibres' projected length along the ray, the body's optical depth along it)
 vec2 optical_depth(vec3 p, vec3 d) {
@@ -112,17 +115,17 @@ void main() {
     vec3 T = normalize(s.tangent.xyz);
     vec3 e1_own = sample_ellipse_axis(s, T);
     vec3 l = normalize(lights[j].direction_lambda.xyz);
-    float spread = min(lights[j].direction_lambda.w, 1.0);
+    float lambda = lights[j].direction_lambda.w;
     vec3 e1 = normalize(abs(l.x) < 0.9 ? cross(l, vec3(1.0, 0.0, 0.0)) : cross(l, vec3(0.0, 1.0, 0.0)));
     vec3 e2 = cross(l, e1);
     float direct = 0.0;
     float fibres = 0.0;
     for (int r = 0; r < u_rays; ++r) {
-        vec3 d = l;
-        if (r > 0) {
-            float phi = TWO_PI * float(r - 1) / float(u_rays - 1);
-            d = normalize(cos(spread) * l + sin(spread) * (cos(phi) * e1 + sin(phi) * e2));
-        }
+        // Ray r carries the r-th of u_rays equal shares of the light's energy, from the centre out (srbf_lobe_cos),
+        // turned by the golden angle from the one before.
+        float c = srbf_lobe_cos(lambda, 1.0 - (float(r) + 0.5) / float(u_rays));
+        float phi = GOLDEN_ANGLE * float(r);
+        vec3 d = normalize(c * l + sqrt(max(1.0 - c * c, 0.0)) * (cos(phi) * e1 + sin(phi) * e2));
         float start = own_cluster_exit(d, T, e1_own, s.position.w, s.tangent.w) + 2.0 * u_step;
         vec2 depth = optical_depth(s.position.xyz + start * d, d);
         float tau = u_width * depth.x;

@@ -96,6 +96,27 @@ TEST(Srbf, IntegralMatchesQuadrature) {
     EXPECT_NEAR(glsl::srbf_G(-centre, centre, 2.0f), std::exp(-1.0f), 1e-6f);
 }
 
+TEST(Srbf, LobeCosineIsTheInverseOfTheLobesEnergyFraction) {
+    // srbf_lobe_cos(λ, ξ) is the cos γ with a fraction ξ of G's energy at smaller cosines (farther from the centre). The
+    // energy at cos γ < c is 2π ∫_{−1}^{c} exp(2(μ − 1)/λ²) dμ = πλ² (e^{2(c−1)/λ²} − e^{−4/λ²}): inverted exactly,
+    // to float precision (1e-4 of the fraction), from the narrowest fitted light to a nearly constant one.
+    for (float lambda : {0.033f, 0.1f, 0.5f, 2.0f, 4.0f}) {
+        const double l2 = double(lambda) * lambda;
+        for (float xi : {0.01f, 0.1f, 0.5f, 0.9f, 0.99f}) {
+            const double c = glsl::srbf_lobe_cos(lambda, xi);
+            ASSERT_GE(c, -1.0);
+            ASSERT_LE(c, 1.0);
+            const double below = M_PI * l2 * (std::exp(2.0 * (c - 1.0) / l2) - std::exp(-4.0 / l2));
+            EXPECT_NEAR(below / glsl::srbf_integral(lambda), xi, 1e-4) << "lambda " << lambda << " xi " << xi;
+        }
+        // ξ = 1 is the centre; a wide light sends 38 % of its energy from the far hemisphere (cos γ < 0).
+        EXPECT_FLOAT_EQ(glsl::srbf_lobe_cos(lambda, 1.0f), 1.0f);
+    }
+    EXPECT_NEAR(glsl::srbf_lobe_cos(2.0f, 0.3775f), 0.0f, 1e-3f);
+    // The narrowest light's strata: near the centre at γ ≈ λ √(−ln(1 − ξ')) for the energy fraction ξ' inside γ.
+    EXPECT_NEAR(std::acos(glsl::srbf_lobe_cos(0.033f, 0.5f)), 0.033 * std::sqrt(std::log(2.0)), 1e-3);
+}
+
 EnvMap random_map(int width, unsigned seed) {
     EnvMap map(width, width / 2);
     std::mt19937 rng(seed);

@@ -168,13 +168,14 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
         EXPECT_LT(lit.y, 1e-3f) << "row " << r;
         EXPECT_LT(behind.x, 1e-6f) << "row " << r;
         const glm::vec3 p = renderer.lighting_sample(static_cast<std::size_t>(rows + r))[0];
-        double n_cpu = 0;  // the pass's lobe: for λ = 0.02 its ring of rays is 0.06 cm from the centre ray
-        for (int k = 0; k < 7; ++k) {
-            glm::vec3 d = light.omega;
-            if (k > 0) {
-                const float phi = 6.2831853f * static_cast<float>(k - 1) / 6.0f;
-                d = glm::normalize(std::cos(0.02f) * d + std::sin(0.02f) * glm::vec3(0.0f, std::cos(phi), std::sin(phi)));
-            }
+        double n_cpu = 0;  // the pass's lobe: 7 rays, each one seventh of the light's energy (srbf_lobe_cos), turned by the
+        for (int k = 0; k < 7; ++k) {  // golden angle about the light; for λ = 0.02 at most 0.1 cm from the centre ray
+            const float c = glsl::srbf_lobe_cos(light.lambda, 1.0f - (static_cast<float>(k) + 0.5f) / 7.0f);
+            const float phi = 2.39996322973f * static_cast<float>(k);
+            // The pass's basis about ω = −x: e1 = ω × y = −z, e2 = ω × e1 = −y.
+            const glm::vec3 d = glm::normalize(c * light.omega + std::sqrt(std::max(1.0f - c * c, 0.0f)) *
+                                                                     (std::cos(phi) * glm::vec3(0.0f, 0.0f, -1.0f) +
+                                                                      std::sin(phi) * glm::vec3(0.0f, -1.0f, 0.0f)));
             const float start = 1.0f / std::max(std::sqrt(1.0f - d.y * d.y), 0.25f) + 2.0f * grid.voxel;
             n_cpu += 2.0 * 0.05 * grid.integrate(p + start * d, d, 8.0f, 0.25f * grid.voxel) / 7.0;
         }
