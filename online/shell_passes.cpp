@@ -221,6 +221,8 @@ std::string LightingPass::tangents_define(const ShellSettings& s) {
     return "SHELL_TANGENTS " + std::to_string(s.tangent_spread != 0.0f ? 4 : 1);
 }
 
+bool LightingPass::tilt_pick(const ShellSettings& s) { return s.tilt_per_strip && s.tangent_spread != 0.0f; }
+
 std::vector<std::string> LightingPass::variant_defines(const ShellSettings& s) {
     std::vector<std::string> defines = srbf_variant_defines(s.hair.config, s.hair.lobes, s.hair.multiple);
     defines.push_back(tangents_define(s));
@@ -263,6 +265,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     if (same && s.reuse_lighting) return false;
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     std::vector<std::string> defines = variant_defines(s);
+    defines.push_back("LIGHTING_TEXELS " + std::to_string(kLightingTexels));
     // Culling lights keeps each sample's estimates and its lights kept in arrays of the light count.
     const bool cull = s.light_cull > 0.0f && gpu.light_count > 0 && gpu.light_count <= kMaxCulledLights;
     if (cull) defines.push_back("SHELL_CULL_LIGHTS " + std::to_string(gpu.light_count));
@@ -304,7 +307,9 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
                                      "SHELL_FOURIER " + std::to_string(s.fourier_order),
                                      std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
                                      "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth)),
-                                     std::string("SHELL_FOLD ") + (fold ? "1" : "0")};
+                                     std::string("SHELL_FOLD ") + (fold ? "1" : "0"),
+                                     std::string("SHELL_TILT_PICK ") + (LightingPass::tilt_pick(s) ? "1" : "0"),
+                                     "LIGHTING_TEXELS " + std::to_string(kLightingTexels)};
     if (lighting == 2) {  // the per-fragment reference lights every fragment as the lighting pass lights a sample
         const std::vector<std::string> variant = LightingPass::variant_defines(s);
         defines.insert(defines.end(), variant.begin(), variant.end());

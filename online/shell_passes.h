@@ -37,7 +37,9 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-inline constexpr int kLightingTexels = 8;  // RGBA texels per lighting sample: the 27 floats C_k, S_k, V and one more
+// RGBA texels per lighting sample: the 27 floats C_k, S_k, V, the own cluster's stretch and the lights lit in 8, then each
+// fibre tangent's lum(C_0) (shaders/gl/shell_lighting.comp; the shaders' LIGHTING_TEXELS).
+inline constexpr int kLightingTexels = 9;
                                            // (shaders/gl/shell_lighting.comp)
 // The most lights the lighting pass culls per sample (ShellSettings::light_cull): it keeps each light's estimate and
 // the lights kept in arrays of the light count, per sample; with more lights it lights every one.
@@ -152,6 +154,8 @@ public:
     static std::string tangents_define(const ShellSettings& s);
     // The lighting's compile-time variant: srbf_variant_defines of the settings' hair and the tangents_define.
     static std::vector<std::string> variant_defines(const ShellSettings& s);
+    // Whether the shells light each strip of a sector at one fibre tangent (ShellSettings::tilt_per_strip, with four).
+    static bool tilt_pick(const ShellSettings& s);
 
 private:
     std::map<std::string, std::unique_ptr<Program>> programs_;  // by variant_defines, made on first use

@@ -499,6 +499,18 @@ std::vector<float> ShellRenderer::read_lighting() const {
     return out;
 }
 
+std::vector<glm::vec4> ShellRenderer::read_tangent_luminance() const {
+    const ShellGpu& g = *impl_->gpu;
+    const std::vector<float> tex = lighting_texels(g);
+    std::vector<glm::vec4> out(g.clusters * static_cast<std::size_t>(g.lighting_rows));
+    for (std::size_t c = 0; c < g.clusters; ++c)
+        for (int r = 0; r < g.lighting_rows; ++r) {
+            const std::size_t at = ((c * kLightingTexels + 8) * static_cast<std::size_t>(g.lighting_rows) + r) * 4;
+            out[c * g.lighting_rows + r] = glm::vec4(tex[at], tex[at + 1], tex[at + 2], tex[at + 3]);
+        }
+    return out;
+}
+
 std::vector<int> ShellRenderer::read_lights_lit() const {
     const ShellGpu& g = *impl_->gpu;
     const std::vector<float> tex = lighting_texels(g);

@@ -133,6 +133,10 @@ ParamTable<ShellSettings> make_table() {
                                     [](auto& s) -> auto& { return s.tangent_spread; });
     spread.written = [](const S& s) { return s.tangent_spread >= 0.0f; };
     t.push_back(spread);
+    t.push_back(bool_param<S>("tilt_per_strip",
+                              "with four fibre tangents, each strip of a sector lit as one fibre at one of them (false: "
+                              "every fibre at their mean)",
+                              [](auto& s) -> auto& { return s.tilt_per_strip; }));
     Param<S> radius = real_param<S>("fiber_radius", "scene units", 0.0, 100.0,
                                     "radius of the fibres the shadows between clusters count (0 or absent: coif reference's "
                                     "auto radius, 1e-3 of the strands' bounding-box diagonal)",

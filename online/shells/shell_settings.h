@@ -46,6 +46,10 @@ struct ShellSettings {
     // own tilts, measured from its strands at every lighting sample (ShellStats::tangent_spread is their RMS);
     // > 0, a ring of this RMS angle (radians) instead; 0 lights every fibre as if it lay along the axis.
     float tangent_spread = -1.0f;
+    // With four tangents (tangent_spread ≠ 0), each strip of a sector (16 across it) is lit as one fibre at one of them,
+    // drawn by a stable hash, instead of every fibre at their mean: the highlights' fibre-to-fibre contrast
+    // (shaders/gl/shell_shade.glsl SHELL_TILT_PICK; docs/quality.md, "One tangent per strip").
+    bool tilt_per_strip = true;
     // Records blended per sector on the GPU, 1..kMaxShellNeighbours: 1 draws the nearest record alone, which keeps its
     // fibres' contrast; docs/quality.md ("Fibre detail") chose it by the detail ratio and the blurred PSNR against coif
     // reference.

@@ -34,6 +34,9 @@ out vec4 v_L4;
 out vec4 v_L5;
 out vec4 v_L6;
 out float v_L7;  // texel 7's x: the lights' mean own_cluster_stretch (shell_lighting.comp)
+#if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
+out vec4 v_L8;   // texel 8: each fibre tangent's lum(C_0)
+#endif
 #endif
 
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
@@ -67,6 +70,9 @@ void main() {
     v_L5 = lighting_fetch(a_texcoord.y, inst.info.y, 5);
     v_L6 = lighting_fetch(a_texcoord.y, inst.info.y, 6);
     v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).x;
+#if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
+    v_L8 = lighting_fetch(a_texcoord.y, inst.info.y, 8);
+#endif
 #endif
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
     {

@@ -9,11 +9,14 @@
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
-// 27 floats in 8 RGBA32F texels per sample: texel (k, cluster · 8 + m) for the k-th sample lit along the cluster; the 28th float is the
+// 27 floats in the first 8 RGBA32F texels per sample: texel (k, cluster · LIGHTING_TEXELS + m) for the k-th sample lit along the cluster; the 28th float is the
 // sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV); the 29th is
 // the factor by which the lights' angles to the axis lengthen their paths across the own cluster in the
 // Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each light, averaged with the
 // weights lum(w_j); the 30th the number of lights lit (all of them unless culled, below); texel 7's last two are 0.
+// Texel 8 holds lum(C_0) of each fibre tangent q alone, (Σ_j w_jq over the four), on C_0's scale (all four lum(C_0)
+// with one tangent): the shells light each strip of a sector as one fibre at one tangent (shell_shade.glsl
+// SHELL_TILT_PICK). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
 //
 // With SHELL_CULL_LIGHTS N (the light count, up to kMaxCulledLights; ShellSettings::light_cull > 0) each sample lights only the lights that
 // carry its light: light j's share is estimated as b_j = |lum(L_j)| ∫G_j (T̃_j + d_f max_c(T_f − T̃_j)), its power times
@@ -110,7 +113,9 @@ void main() {
     // The kept lights stand for the skipped ones too: scaled by Σ b over Σ b kept (at most 1 / (1 − u_light_cull)).
     float stand_in = kept_estimate > 0.0 ? estimated / kept_estimate : 1.0;
 #endif
+    vec4 tangent_lum = vec4(0.0);  // lum(C_0) of each tangent alone (texel 8)
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
+        vec3 C0_before = C[0];
         vec3 Tq;
         vec3 rq;
         fibre_tangent_of(T, r0, tm, ta, tb, q, SHELL_TANGENTS, Tq, rq);
@@ -136,7 +141,9 @@ void main() {
                 S[k] += wj * (d * sin(float(k) * psi));
             }
         }
+        tangent_lum[q] = float(SHELL_TANGENTS) * dot(C[0] - C0_before, vec3(0.2126, 0.7152, 0.0722));
     }
+    if (SHELL_TANGENTS == 1) tangent_lum = vec4(tangent_lum.x);
     float v[32];
     v[0] = C[0].x; v[1] = C[0].y; v[2] = C[0].z;
     for (int k = 1; k <= 4; ++k) {
@@ -154,5 +161,6 @@ void main() {
     v[30] = 0.0;
     v[31] = 0.0;
     for (int m = 0; m < 8; ++m)
-        imageStore(u_out, ivec2(used, cluster * 8 + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
+        imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 8), tangent_lum);
 }

@@ -31,6 +31,8 @@
 //   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none
 //   SHELL_TANGENTS    with SHELL_LIGHTING 2: the fibres' tangents each light is evaluated at (shell_light.glsl)
 //   SHELL_FOLD        1: two layers from the outer one's mesh (ShellSettings::fold_level, shell_shade_pair below)
+//   SHELL_TILT_PICK   1: each strip of a sector lit as one fibre at one of the four fibre tangents (ShellSettings::
+//                     tilt_per_strip, fibre_strip_tangent below); 0: every fibre at the four tangents' mean
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -58,6 +60,9 @@
 #ifndef SHELL_FOLD
 #define SHELL_FOLD 0
 #endif
+#ifndef SHELL_TILT_PICK
+#define SHELL_TILT_PICK 0
+#endif
 #if SHELL_OWN == 1
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
 #include "shaders/lighting/own_cluster.glsl"
@@ -77,6 +82,9 @@ centroid in vec4 v_L4;
 centroid in vec4 v_L5;
 centroid in vec4 v_L6;
 centroid in float v_L7;
+#if SHELL_TILT_PICK == 1
+centroid in vec4 v_L8;
+#endif
 #endif
 
 struct ShellSector {
@@ -110,6 +118,42 @@ uniform float u_re_scale;          // 1 / re_norm
 uniform vec3 u_eye;
 
 const float TWO_PI = 6.28318530718;
+
+#if SHELL_TILT_PICK == 1
+// The fibres a record stands for tilt about the cluster's axis: by 35° RMS for the default style, each fibre its own
+// way. The lighting pass lights four tangents with the strands' measured tilts (shaders/lighting/fibre_tangents.glsl);
+// their mean lights every fibre alike and smooths away the fibre-to-fibre contrast of the highlights. So each of
+// FIBRE_STRIPS strips across a sector is lit as one fibre at one of the four. The draw is stratified: every 4
+// neighbouring strips take the four tangents once each, in an order drawn by a stable hash of the sector and the
+// group, so that every group, and so every sector, averages to the four tangents' mean (independent draws per strip
+// left the image's mean hair radiance 1-2 % to the draw at 240 x 160). docs/quality.md ("One tangent per strip")
+// chose it and the strips' count by the detail ratio and the blurred PSNR against the path tracer.
+const int FIBRE_STRIPS = 16;
+int fibre_strip_tangent(uint sector, float x) {
+    int strip = int(clamp(x, 0.0, 0.999999) * float(FIBRE_STRIPS));
+    uint h = sector * 2654435761u ^ uint(strip / 4) * 2246822519u;
+    h ^= h >> 15;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    // A permutation of (0, 1, 2, 3) from h (Fisher–Yates: 4 · 3 · 2 choices).
+    ivec4 order = ivec4(0, 1, 2, 3);
+    int k = int(h % 4u);
+    int swap = order[k];
+    order[k] = order[3];
+    order[3] = swap;
+    h /= 4u;
+    k = int(h % 3u);
+    swap = order[k];
+    order[k] = order[2];
+    order[2] = swap;
+    h /= 3u;
+    k = int(h % 2u);
+    swap = order[k];
+    order[k] = order[1];
+    order[1] = swap;
+    return order[strip & 3];
+}
+#endif
 
 vec4 atlas_fetch(uint tile, vec2 p) {
     vec2 origin = atlas_tile_origin(tile, u_tiles_per_row, u_hrir_length, u_views);
@@ -218,8 +262,16 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         vec2 sh = vec2(1.0, 0.0);
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
+#if SHELL_TILT_PICK == 1
+        // The strip's fibre at its one tangent (the Fourier path scales the mean by this tangent's share).
+        vec3 Tq;
+        vec3 rq;
+        fibre_tangent_of(T, r, tm, ta, tb, fibre_strip_tangent(top, x), SHELL_TANGENTS, Tq, rq);
+        vec3 wj = shell_light_weight(srbf_point(hp, V, Tq, rq), j, sh, visible, total);
+#else
         // The mean over the fibres' tangents about T, as in the lighting pass.
         vec3 wj = shell_light_weight_fibres(hp, V, T, r, tm, ta, tb, j, sh, visible, total);
+#endif
         float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
         float lp = shell_light_spread(j, T);
         float d1 = exp(-0.25 * lp * lp);
@@ -303,6 +355,17 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     sum += t1.x * (C2 * e2.x + S2 * e2.y) + t1.y * (S2 * e2.x - C2 * e2.y);
     sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
     sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
+#if SHELL_TILT_PICK == 1
+    {  // The strip's fibre at its one tangent: the sums scaled by that tangent's share of the light (texel 8).
+#if SHELL_LIGHTING == 1
+        vec4 L8 = v_L8;
+#else
+        vec4 L8 = lighting_fetch(texcoord.y, info.y, 8);
+#endif
+        float mean = dot(C0, vec3(0.2126, 0.7152, 0.0722));
+        sum *= mean > 1e-20 ? max(L8[fibre_strip_tangent(top, x)], 0.0) / mean : 1.0;
+    }
+#endif
     return vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);
 #endif
 }

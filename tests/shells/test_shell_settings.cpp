@@ -88,6 +88,7 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.hair.d_f = 0.4f;
     s.shadows = false;
     s.own_cluster_shadow = false;
+    s.tilt_per_strip = false;
     s.fiber_radius = 0.03f;
     s.kappa_shadow = 0.8f;
     s.neighbours = 4;

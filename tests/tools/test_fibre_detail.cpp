@@ -53,6 +53,12 @@ TEST(FibreDetailSlow, TheDefaultRecordsKeepMoreFibreDetailThanTheSmoothedBlendAt
     EXPECT_GE(now.detail, 1.08 * before.detail);
     EXPECT_GE(now.blurred_psnr, before.blurred_psnr - 0.3);
     EXPECT_GE(now.detail, 0.7);
+    // Each strip of a sector lit at one fibre tangent (docs/quality.md "One tangent per strip"), against every fibre at the
+    // four tangents' mean: at 360 × 240 12–18 % more detail at −0.03 to +0.05 dB. Asked: 6 % more, within 0.3 dB.
+    std::ofstream(dir / "mean.json") << R"({"tilt_per_strip": false})";
+    const Look mean = look(" --params '" + (dir / "mean.json").string() + "'", "every fibre at the tangents' mean");
+    EXPECT_GE(now.detail, 1.06 * mean.detail);
+    EXPECT_GE(now.blurred_psnr, mean.blurred_psnr - 0.3);
     fs::remove_all(dir);
 }
 
