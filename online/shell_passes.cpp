@@ -309,6 +309,7 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
                                      "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth)),
                                      std::string("SHELL_FOLD ") + (fold ? "1" : "0"),
                                      std::string("SHELL_TILT_PICK ") + (LightingPass::tilt_pick(s) ? "1" : "0"),
+                                     std::string("SHELL_SECTOR_PICK ") + (s.sector_per_strip ? "1" : "0"),
                                      "LIGHTING_TEXELS " + std::to_string(kLightingTexels)};
     if (lighting == 2) {  // the per-fragment reference lights every fragment as the lighting pass lights a sample
         const std::vector<std::string> variant = LightingPass::variant_defines(s);

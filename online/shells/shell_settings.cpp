@@ -137,6 +137,10 @@ ParamTable<ShellSettings> make_table() {
                               "with four fibre tangents, each strip of a sector lit as one fibre at one of them (false: "
                               "every fibre at their mean)",
                               [](auto& s) -> auto& { return s.tilt_per_strip; }));
+    t.push_back(bool_param<S>("sector_per_strip",
+                              "each strip of a sector takes the records of one of its HSV's two sectors, drawn against "
+                              "the position along t (false: both, mixed by it)",
+                              [](auto& s) -> auto& { return s.sector_per_strip; }));
     Param<S> radius = real_param<S>("fiber_radius", "scene units", 0.0, 100.0,
                                     "radius of the fibres the shadows between clusters count (0 or absent: coif reference's "
                                     "auto radius, 1e-3 of the strands' bounding-box diagonal)",

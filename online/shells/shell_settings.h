@@ -50,6 +50,11 @@ struct ShellSettings {
     // drawn by a stable hash, instead of every fibre at their mean: the highlights' fibre-to-fibre contrast
     // (shaders/gl/shell_shade.glsl SHELL_TILT_PICK; docs/quality.md, "One tangent per strip").
     bool tilt_per_strip = true;
+    // Each of those strips takes the records of one of its HSV's two sectors, the bottom one where γ (the position along
+    // t across the HSV) passes a stable hash's threshold, instead of both sectors' records mixed by γ (004 eq. 7), which
+    // averages two fibre patterns into a fainter one; it reads one sector's records instead of two
+    // (shaders/gl/shell_shade.glsl SHELL_SECTOR_PICK; docs/quality.md, "One sector's records per strip").
+    bool sector_per_strip = true;
     // Records blended per sector on the GPU, 1..kMaxShellNeighbours: 1 draws the nearest record alone, which keeps its
     // fibres' contrast; docs/quality.md ("Fibre detail") chose it by the detail ratio and the blurred PSNR against coif
     // reference.

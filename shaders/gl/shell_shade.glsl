@@ -33,6 +33,8 @@
 //   SHELL_FOLD        1: two layers from the outer one's mesh (ShellSettings::fold_level, shell_shade_pair below)
 //   SHELL_TILT_PICK   1: each strip of a sector lit as one fibre at one of the four fibre tangents (ShellSettings::
 //                     tilt_per_strip, fibre_strip_tangent below); 0: every fibre at the four tangents' mean
+//   SHELL_SECTOR_PICK 1: each strip takes the records of one of its HSV's two sectors, drawn against γ
+//                     (ShellSettings::sector_per_strip); 0: both sectors' records mixed by γ (004 eq. 7)
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -62,6 +64,9 @@
 #endif
 #ifndef SHELL_TILT_PICK
 #define SHELL_TILT_PICK 0
+#endif
+#ifndef SHELL_SECTOR_PICK
+#define SHELL_SECTOR_PICK 0
 #endif
 #if SHELL_OWN == 1
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
@@ -119,19 +124,20 @@ uniform vec3 u_eye;
 
 const float TWO_PI = 6.28318530718;
 
-#if SHELL_TILT_PICK == 1
-// The fibres a record stands for tilt about the cluster's axis: by 35° RMS for the default style, each fibre its own
-// way. The lighting pass lights four tangents with the strands' measured tilts (shaders/lighting/fibre_tangents.glsl);
-// their mean lights every fibre alike and smooths away the fibre-to-fibre contrast of the highlights. So each of
-// FIBRE_STRIPS strips across a sector is lit as one fibre at one of the four. The draw is stratified: every 4
-// neighbouring strips take the four tangents once each, in an order drawn by a stable hash of the sector and the
-// group, so that every group, and so every sector, averages to the four tangents' mean (independent draws per strip
-// left the image's mean hair radiance 1-2 % to the draw at 240 x 160). docs/quality.md ("One tangent per strip")
-// chose it and the strips' count by the detail ratio and the blurred PSNR against the path tracer.
+// Strips across a sector (SHELL_TILT_PICK, SHELL_SECTOR_PICK). A record stands for the fibres of a sector; the two
+// choices below light and draw each of FIBRE_STRIPS strips across it as one fibre would be, where the sums and the
+// mix of 004 eq. 7 made every fibre the mean of its neighbours. Both draw by a stable hash, stratified: every 4
+// neighbouring strips form a group whose draws are a permutation, so that every group, and so every sector, keeps the
+// mean (independent draws per strip left the image's mean hair radiance 1-2 % to the draw at 240 x 160).
+// docs/quality.md ("One tangent per strip", "One sector's records per strip") chose them and the strips' count by
+// the detail ratio and the blurred PSNR against the path tracer.
 const int FIBRE_STRIPS = 16;
-int fibre_strip_tangent(uint sector, float x) {
-    int strip = int(clamp(x, 0.0, 0.999999) * float(FIBRE_STRIPS));
-    uint h = sector * 2654435761u ^ uint(strip / 4) * 2246822519u;
+
+int fibre_strip(float x) { return int(clamp(x, 0.0, 0.999999) * float(FIBRE_STRIPS)); }
+
+// Position (0..3) of `strip` in a permutation of its group of 4, drawn from the sector, the group and `salt`.
+int strip_rank(uint sector, int strip, uint salt) {
+    uint h = (sector * 2654435761u) ^ (uint(strip / 4) * 2246822519u) ^ (salt * 3266489917u);
     h ^= h >> 15;
     h *= 2246822519u;
     h ^= h >> 13;
@@ -153,6 +159,13 @@ int fibre_strip_tangent(uint sector, float x) {
     order[1] = swap;
     return order[strip & 3];
 }
+
+#if SHELL_TILT_PICK == 1
+// The fibres a record stands for tilt about the cluster's axis: by 35° RMS for the default style, each fibre its own
+// way. The lighting pass lights four tangents with the strands' measured tilts (shaders/lighting/fibre_tangents.glsl);
+// their mean lights every fibre alike and smooths away the fibre-to-fibre contrast of the highlights. So each strip is
+// lit as one fibre at one of the four, every group of 4 strips taking each once.
+int fibre_strip_tangent(uint sector, float x) { return strip_rank(sector, fibre_strip(x), 0u); }
 #endif
 
 vec4 atlas_fetch(uint tile, vec2 p) {
@@ -215,12 +228,28 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     float view = theta_v / TWO_PI * float(u_views);
     view = mod(view, float(u_views));
     vec2 p = vec2(x * float(u_hrir_length), view + 0.5);
+#if SHELL_SECTOR_PICK == 1
+    // The strip takes the records of one of the HSV's two sectors: the bottom one where γ passes the strip's threshold,
+    // (rank + a hash's offset) / 4 within its group, so that a share γ of every group's strips takes the bottom one,
+    // as 004 eq. 7 mixes them. Each strip keeps one record's contrast, and one sector's records are read instead of two.
+    vec4 t0, t1, t2;
+    {
+        int strip = fibre_strip(x);
+        uint h = (top * 747796405u) ^ (uint(strip / 4) * 2891336453u);
+        h ^= h >> 16;
+        h *= 2246822519u;
+        h ^= h >> 13;
+        float threshold = (float(strip_rank(top, strip, 1u)) + (float(h & 65535u) + 0.5) / 65536.0) * 0.25;
+        sector_values(gamma > threshold ? bottom : top, p, t0, t1, t2);
+    }
+#else
     vec4 top0, top1, top2, bot0, bot1, bot2;
     sector_values(top, p, top0, top1, top2);
     sector_values(bottom, p, bot0, bot1, bot2);
     vec4 t0 = mix(top0, bot0, gamma);
     vec4 t1 = mix(top1, bot1, gamma);
     vec2 t2 = mix(top2.xy, bot2.xy, gamma);
+#endif
     float alpha = clamp(t0.x, 0.0, 1.0);
 #if SHELL_OWN == 1
     // The own cluster's fibres along one radius at this (i, k), in eq. 12's units: κ_shadow Σ ᾱ of every layer;

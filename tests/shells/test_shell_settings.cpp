@@ -89,6 +89,7 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.shadows = false;
     s.own_cluster_shadow = false;
     s.tilt_per_strip = false;
+    s.sector_per_strip = false;
     s.fiber_radius = 0.03f;
     s.kappa_shadow = 0.8f;
     s.neighbours = 4;

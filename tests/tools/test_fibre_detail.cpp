@@ -59,6 +59,12 @@ TEST(FibreDetailSlow, TheDefaultRecordsKeepMoreFibreDetailThanTheSmoothedBlendAt
     const Look mean = look(" --params '" + (dir / "mean.json").string() + "'", "every fibre at the tangents' mean");
     EXPECT_GE(now.detail, 1.06 * mean.detail);
     EXPECT_GE(now.blurred_psnr, mean.blurred_psnr - 0.3);
+    // Each strip with one sector's records (docs/quality.md "One sector's records per strip"), against both sectors'
+    // mixed by γ: at 360 × 240 19–23 % more detail and 0.04–0.23 dB more. Asked: 10 % more, within 0.3 dB.
+    std::ofstream(dir / "mix.json") << R"({"sector_per_strip": false})";
+    const Look mix = look(" --params '" + (dir / "mix.json").string() + "'", "both sectors' records mixed by gamma");
+    EXPECT_GE(now.detail, 1.10 * mix.detail);
+    EXPECT_GE(now.blurred_psnr, mix.blurred_psnr - 0.3);
     fs::remove_all(dir);
 }
 
