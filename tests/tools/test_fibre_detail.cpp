@@ -22,8 +22,9 @@ using test::run_coif;
 // blurred PSNR 24.45 dB; the smoothed blend's 0.721 and 24.38 dB (at 360 × 240 0.578 against 0.433, 22.45 against
 // 22.38 dB). The reference's own noise at 1024 spp moves the detail ratio by about 1 % between seeds. The test asks
 // for 8 % more detail than the smoothed blend (measured 12 %) at no more than 0.3 dB less blurred PSNR (measured 0.07
-// dB more), so it fails on a return to smoothed records or to blending, and asks the default for a detail ratio of at
-// least 0.7 at this size.
+// dB more), so it fails on a return to smoothed records or to blending. With one tangent and one sector's records per
+// strip (docs/quality.md) the default's detail ratio here is 0.996 at 25.83 dB, the smoothed blend's 0.850 at 25.67 dB;
+// the test asks the default for at least 0.9 at this size (0.83 at 360 × 240, the issue's goal 0.8).
 TEST(FibreDetailSlow, TheDefaultRecordsKeepMoreFibreDetailThanTheSmoothedBlendAtTheSameBlurredPsnr) {
     const fs::path dir = test::scratch_dir("fibre-detail");
     const std::string size = " --width 180 --height 120 --background 0 0 0";
@@ -52,17 +53,17 @@ TEST(FibreDetailSlow, TheDefaultRecordsKeepMoreFibreDetailThanTheSmoothedBlendAt
                              "smoothed records, 2 blended");
     EXPECT_GE(now.detail, 1.08 * before.detail);
     EXPECT_GE(now.blurred_psnr, before.blurred_psnr - 0.3);
-    EXPECT_GE(now.detail, 0.7);
+    EXPECT_GE(now.detail, 0.9);
     // Each strip of a sector lit at one fibre tangent (docs/quality.md "One tangent per strip"), against every fibre at the
     // four tangents' mean: at 360 × 240 12–18 % more detail at −0.03 to +0.05 dB. Asked: 6 % more, within 0.3 dB.
     std::ofstream(dir / "mean.json") << R"({"tilt_per_strip": false})";
-    const Look mean = look(" --params '" + (dir / "mean.json").string() + "'", "every fibre at the tangents' mean");
+    const Look mean = look(" --params '" + (dir / "mean.json").string() + "'", "every fibre at the mean of the tangents");
     EXPECT_GE(now.detail, 1.06 * mean.detail);
     EXPECT_GE(now.blurred_psnr, mean.blurred_psnr - 0.3);
     // Each strip with one sector's records (docs/quality.md "One sector's records per strip"), against both sectors'
     // mixed by γ: at 360 × 240 19–23 % more detail and 0.04–0.23 dB more. Asked: 10 % more, within 0.3 dB.
     std::ofstream(dir / "mix.json") << R"({"sector_per_strip": false})";
-    const Look mix = look(" --params '" + (dir / "mix.json").string() + "'", "both sectors' records mixed by gamma");
+    const Look mix = look(" --params '" + (dir / "mix.json").string() + "'", "the records of both sectors mixed by gamma");
     EXPECT_GE(now.detail, 1.10 * mix.detail);
     EXPECT_GE(now.blurred_psnr, mix.blurred_psnr - 0.3);
     fs::remove_all(dir);
