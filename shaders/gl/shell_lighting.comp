@@ -9,11 +9,12 @@
 //   C_0 = Σ w_j,  C_k = Σ w_j d_k cos kψ_j,  S_k = Σ w_j d_k sin kψ_j   (k = 1..4, RGB each)
 // with d_k = exp(−k² λ'²/4) the damping of harmonic k by the light's spread (the Fourier coefficient
 // of a circular Gaussian of bandwidth λ' for small λ'), λ' = λ_j / |l projected on the normal plane|.
-// 27 floats in the first 8 RGBA32F texels per sample: texel (k, cluster · LIGHTING_TEXELS + m) for the k-th sample lit along the cluster; the 28th float is the
-// sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j / Σ_j lum(L_j) (the shadow AOV); the 29th is
-// the factor by which the lights' angles to the axis lengthen their paths across the own cluster in the
-// Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each light, averaged with the
-// weights lum(w_j); the 30th the number of lights lit (all of them unless culled, below); texel 7's last two are 0.
+// 27 floats in the first 8 RGBA32F texels per sample: texel (k, cluster · LIGHTING_TEXELS + m) for the k-th sample
+// lit along the cluster; the 28th float is the sample's unoccluded fraction of the light, Σ_j lum(L_j) T̃_j /
+// Σ_j lum(L_j) (the shadow AOV); the 29th is the factor by which the lights' angles to the axis lengthen their
+// paths across the own cluster in the Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each
+// light, averaged with the weights lum(w_j); the 30th the number of lights lit (all of them unless culled, below);
+// texel 7's last two are 0.
 // Texel 8 holds lum(C_0) of each fibre tangent q alone, (Σ_j w_jq over the four), on C_0's scale (all four lum(C_0)
 // with one tangent): the shells light each strip of a sector as one fibre at one tangent (shell_shade.glsl
 // SHELL_TILT_PICK). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
