@@ -484,6 +484,11 @@ std::vector<float> lighting_texels(const ShellGpu& g) {
     glGetTextureImage(g.lighting.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(tex.size() * sizeof(float)), tex.data());
     return tex;
 }
+// Float q (0 … 4 · kLightingTexels − 1) of cluster c's lighting sample `row` in lighting_texels' copy.
+float lighting_float(const std::vector<float>& tex, const ShellGpu& g, std::size_t c, std::size_t row, int q) {
+    const std::size_t y = c * kLightingTexels + static_cast<std::size_t>(q / 4);
+    return tex[(y * static_cast<std::size_t>(g.lighting_rows) + row) * 4 + static_cast<std::size_t>(q % 4)];
+}
 }  // namespace
 
 std::vector<float> ShellRenderer::read_lighting() const {
@@ -492,10 +497,8 @@ std::vector<float> ShellRenderer::read_lighting() const {
     std::vector<float> out(g.clusters * g.lighting_rows * 27);
     for (std::size_t c = 0; c < g.clusters; ++c)
         for (int r = 0; r < g.lighting_rows; ++r)
-            for (int q = 0; q < 27; ++q) {
-                const std::size_t y = c * kLightingTexels + q / 4;
-                out[(c * g.lighting_rows + r) * 27 + q] = tex[(y * g.lighting_rows + r) * 4 + q % 4];
-            }
+            for (int q = 0; q < 27; ++q)
+                out[(c * g.lighting_rows + r) * 27 + q] = lighting_float(tex, g, c, static_cast<std::size_t>(r), q);
     return out;
 }
 
@@ -504,10 +507,9 @@ std::vector<glm::vec4> ShellRenderer::read_tangent_luminance() const {
     const std::vector<float> tex = lighting_texels(g);
     std::vector<glm::vec4> out(g.clusters * static_cast<std::size_t>(g.lighting_rows));
     for (std::size_t c = 0; c < g.clusters; ++c)
-        for (int r = 0; r < g.lighting_rows; ++r) {
-            const std::size_t at = ((c * kLightingTexels + 8) * static_cast<std::size_t>(g.lighting_rows) + r) * 4;
-            out[c * g.lighting_rows + r] = glm::vec4(tex[at], tex[at + 1], tex[at + 2], tex[at + 3]);
-        }
+        for (int r = 0; r < g.lighting_rows; ++r)
+            for (int q = 0; q < 4; ++q)  // texel 8
+                out[c * g.lighting_rows + r][q] = lighting_float(tex, g, c, static_cast<std::size_t>(r), 32 + q);
     return out;
 }
 
@@ -519,8 +521,9 @@ std::vector<int> ShellRenderer::read_lights_lit() const {
         impl_->lighting_key.strides.size() == g.clusters ? impl_->lighting_key.strides : lit_strides(g, {});
     std::vector<int> out;
     for (const glm::ivec2 sample : lit_samples(g.lighting_rows, timings_.lighting_step, strides)) {
-        const std::size_t y = static_cast<std::size_t>(sample.x) * kLightingTexels + 29 / 4;  // float 29: texel 7's second
-        out.push_back(static_cast<int>(tex[(y * g.lighting_rows + static_cast<std::size_t>(sample.y)) * 4 + 29 % 4]));
+        // Float 29: texel 7's second.
+        out.push_back(static_cast<int>(
+            lighting_float(tex, g, static_cast<std::size_t>(sample.x), static_cast<std::size_t>(sample.y), 29)));
     }
     return out;
 }

@@ -283,6 +283,13 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 ta = mix(samples[first].tilt_a.xyz, samples[first + 1].tilt_a.xyz, f);
     vec3 tb = mix(samples[first].tilt_b.xyz, samples[first + 1].tilt_b.xyz, f);
     shell_fibre_tilts(T, r, V, tm, ta, tb);
+#if SHELL_TILT_PICK == 1
+    // The strip's fibre at its one tangent, for every light (the Fourier path scales the mean by this tangent's share).
+    vec3 Tq;
+    vec3 rq;
+    fibre_tangent_of(T, r, tm, ta, tb, fibre_strip_tangent(top, x), SHELL_TANGENTS, Tq, rq);
+    SrbfPoint strip_point = srbf_point(hp, V, Tq, rq);
+#endif
     vec3 lit = vec3(0.0);
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
@@ -292,11 +299,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
 #if SHELL_TILT_PICK == 1
-        // The strip's fibre at its one tangent (the Fourier path scales the mean by this tangent's share).
-        vec3 Tq;
-        vec3 rq;
-        fibre_tangent_of(T, r, tm, ta, tb, fibre_strip_tangent(top, x), SHELL_TANGENTS, Tq, rq);
-        vec3 wj = shell_light_weight(srbf_point(hp, V, Tq, rq), j, sh, visible, total);
+        vec3 wj = shell_light_weight(strip_point, j, sh, visible, total);
 #else
         // The mean over the fibres' tangents about T, as in the lighting pass.
         vec3 wj = shell_light_weight_fibres(hp, V, T, r, tm, ta, tb, j, sh, visible, total);

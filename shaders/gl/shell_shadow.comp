@@ -8,9 +8,9 @@
 // The light's lobe is sampled by `u_rays` rays, each the direction of one of u_rays equal shares of the light's energy
 // (stratified by the lobe's own distribution, shaders/envmap.glsl srbf_lobe_cos: for a narrow light at 0.27 to 1.6 λ
 // from its centre; a wide one, λ = 2, sends 38 % of its light from the far hemisphere and three of 7 rays there);
-// T̃ = mean exp(−τ), n = mean τ over the rays. (A centre and a ring at min(λ, 1) rad, the earlier rule, lit a wide
-// light's fibres from its centre's side alone: 2–3× the reference's single scattering, docs/quality.md.) Each ray starts where it leaves the own
-// cluster (own_cluster_exit: its elliptic cross-section's radius in the ray's direction over the sine of the ray's
+// T̃ = mean exp(−τ), n = mean τ over the rays. (A centre and a ring at min(λ, 1) rad, the earlier rule, missed the
+// far side of a wide light's lobe; docs/quality.md, "Each light's shadow rays by its own energy".) Each ray starts
+// where it leaves the own cluster (own_cluster_exit: its elliptic cross-section's radius in the ray's direction over the sine of the ray's
 // angle to the axis, at most 4 such radii, plus two voxels for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
 // the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
 // earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
