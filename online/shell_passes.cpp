@@ -146,7 +146,7 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 
 // ---- ShadowPass ------------------------------------------------------------------------------------
 
-double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step) const {
+double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, bool narrow_start) const {
     const int used = lit_rows(gpu.lighting_rows, lit_step);  // validates
     glFinish();
     const auto t0 = Clock::now();
@@ -170,6 +170,7 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step) con
     glUniform1i(p.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(p.uniform("u_light_count"), gpu.light_count);
     glUniform1i(p.uniform("u_rays"), kShadowRays);
+    glUniform1i(p.uniform("u_narrow_start"), narrow_start ? 1 : 0);
     glUniform1i(p.uniform("u_rows"), gpu.lighting_rows);
     glUniform1i(p.uniform("u_lit_step"), lit_step);
     glUniform1i(p.uniform("u_used"), used);
@@ -305,7 +306,7 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
     std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
                                      "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
                                      "SHELL_FOURIER " + std::to_string(s.fourier_order),
-                                     std::string("SHELL_OWN ") + (s.own_cluster_shadow ? "1" : "0"),
+                                     "SHELL_OWN " + std::to_string(!s.own_cluster_shadow ? 0 : s.own_cluster_forward ? 2 : 1),
                                      "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth)),
                                      std::string("SHELL_FOLD ") + (fold ? "1" : "0"),
                                      std::string("SHELL_TILT_PICK ") + (LightingPass::tilt_pick(s) ? "1" : "0"),
@@ -449,6 +450,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                 lighting.bind_inputs(prog, gpu, s);
             else if (s.own_cluster_shadow)
                 lighting.bind_tables(prog);  // lut_own_cluster
+            if (s.own_cluster_shadow && s.own_cluster_forward) glUniform1f(prog.uniform("u_own_d_f"), s.hair.d_f);
         }
         if (exact) {
             glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));

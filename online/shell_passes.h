@@ -38,12 +38,13 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // RGBA texels per lighting sample: the 27 floats C_k, S_k, V, the own cluster's stretch and the lights lit in 8, then each
-// fibre tangent's lum(C_0) (shaders/gl/shell_lighting.comp; the shaders' LIGHTING_TEXELS).
-inline constexpr int kLightingTexels = 9;
+// fibre tangent's lum(C_0), then the fibres' forward loss 1 − ā_f (shaders/gl/shell_lighting.comp; the shaders'
+// LIGHTING_TEXELS).
+inline constexpr int kLightingTexels = 10;
 // The most lights the lighting pass culls per sample (ShellSettings::light_cull): it keeps each light's estimate and
 // the lights kept in arrays of the light count, per sample; with more lights it lights every one.
 inline constexpr int kMaxCulledLights = 128;
-inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (centre + a ring of 6)
+inline constexpr int kShadowRays = 7;      // rays per SRBF lobe in the shadow pass (7 equal shares of its energy)
 // Texture units: 0 the record atlas, 1 the lighting sums, 2 … 1 + kLutCount the lighting tables, then the painted
 // absorption, then the host scene's depth (shaders/gl/scene_depth.glsl).
 inline constexpr int kSceneDepthUnit = 3 + shading::kLutCount;
@@ -102,7 +103,8 @@ public:
     // start outside the own cluster: its share is each fragment's own (shaders/lighting/own_cluster.glsl).
     // lit_step: the lighting pass's step along each cluster's samples (lit_rows): only those samples are marched, and
     // the ones between get their neighbours' linear interpolation (a second, cheap dispatch).
-    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1) const;
+    // narrow_start: rays start at most the own cluster's narrow half-axis out (ShellSettings::shadow_neighbours).
+    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1, bool narrow_start = false) const;
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};

@@ -53,6 +53,7 @@ struct InstanceLights {
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
     int shadows_step = 0;
+    bool shadows_narrow = false;
     std::vector<int> levels;  // its clusters' levels of detail (ShellDraw::levels)
 };
 
@@ -67,6 +68,7 @@ struct ShellRenderer::Impl {
     bool shadows_valid = false;
     float shadows_radius = -1.0f;
     int shadows_step = 0;   // the lighting step the shadows were marched at
+    bool shadows_narrow = false;  // ShellSettings::shadow_neighbours they were marched with
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
     ShellDraw::Detail detail = ShellDraw::Detail::follow;  // how the next draws pick levels of detail (render(): fresh, hold)
     // What gpu->lighting holds the sums of: a frame whose inputs are the same (render()'s shifted frames among them:
@@ -124,6 +126,7 @@ struct ShellRenderer::Impl {
         std::swap(shadows_valid, l.shadows_valid);
         std::swap(shadows_radius, l.shadows_radius);
         std::swap(shadows_step, l.shadows_step);
+        std::swap(shadows_narrow, l.shadows_narrow);
     }
 };
 
@@ -419,11 +422,13 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     const int shadow_step = s.lighting_per_fragment ? 1 : step;
     timings_.shadows_ms = 0;
     if (!floor_only && s.shadows && gpu.light_count > 0 &&
-        (!m.shadows_valid || m.shadows_radius != radius || m.shadows_step != shadow_step)) {
-        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step);
+        (!m.shadows_valid || m.shadows_radius != radius || m.shadows_step != shadow_step ||
+         m.shadows_narrow != s.shadow_neighbours)) {
+        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours);
         m.shadows_valid = true;
         m.shadows_radius = radius;
         m.shadows_step = shadow_step;
+        m.shadows_narrow = s.shadow_neighbours;
         m.lighting_key.valid = false;  // the sums read the shadows
     }
 

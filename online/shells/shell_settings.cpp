@@ -128,6 +128,14 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(bool_param<S>("shadows", "shadows between clusters", [](auto& s) -> auto& { return s.shadows; }));
     t.push_back(bool_param<S>("own_cluster_shadow", "the own cluster shades each fibre by its side toward the light",
                               [](auto& s) -> auto& { return s.own_cluster_shadow; }));
+    t.push_back(bool_param<S>("own_cluster_forward",
+                              "with own_cluster_shadow, the light the own cluster's fibres scatter forward reaches the "
+                              "fibres behind them (false: the unscattered light only)",
+                              [](auto& s) -> auto& { return s.own_cluster_forward; }));
+    t.push_back(bool_param<S>("shadow_neighbours",
+                              "shadows between clusters start at the own cluster's narrow half-axis, counting the "
+                              "neighbours that overlap its ellipse (false: where the ray leaves the ellipse)",
+                              [](auto& s) -> auto& { return s.shadow_neighbours; }));
     Param<S> spread = real_param<S>("tangent_spread_deg", "deg", 0.0, 60.0,
                                     "RMS spread of fibre tangents about the cluster axes, lit as a ring of tangents (0: one; absent: the style's, measured)",
                                     [](auto& s) -> auto& { return s.tangent_spread; });

@@ -34,6 +34,13 @@ struct ShellSettings {
     // The own cluster shades each of its fibres by the fibre's side toward the light (shaders/lighting/own_cluster.glsl;
     // false: not at all). Shadows between clusters start outside the own cluster either way.
     bool own_cluster_shadow = true;
+    // With own_cluster_shadow, the light that the own cluster's fibres scatter forward reaches the fibres behind them, as
+    // between clusters (shaders/lighting/own_cluster.glsl own_cluster_forward_series; false: the unscattered light only).
+    bool own_cluster_forward = true;
+    // The shadows between clusters start at most the own cluster's narrow half-axis out (times the ray's stretch), so
+    // that they count the neighbouring clusters whose fibres overlap its ellipse (false: where the ray leaves the
+    // ellipse; shaders/gl/shell_shadow.comp).
+    bool shadow_neighbours = true;
     // Radius (scene units) of the fibres that the shadows between clusters count (online/shells/shadow_grid.h);
     // 0: coif reference's auto radius of the same strands (models/strands.h auto_fiber_radius), so that both
     // renderers' fibres block the same light.

@@ -37,6 +37,9 @@ out float v_L7;  // texel 7's x: the lights' mean own_cluster_stretch (shell_lig
 #if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
 out vec4 v_L8;   // texel 8: each fibre tangent's lum(C_0)
 #endif
+#if defined(SHELL_OWN) && SHELL_OWN == 2
+out vec3 v_L9;   // texel 9: the fibres' forward loss 1 − ā_f
+#endif
 #endif
 
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
@@ -72,6 +75,9 @@ void main() {
     v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).x;
 #if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
     v_L8 = lighting_fetch(a_texcoord.y, inst.info.y, 8);
+#endif
+#if defined(SHELL_OWN) && SHELL_OWN == 2
+    v_L9 = lighting_fetch(a_texcoord.y, inst.info.y, 9).xyz;
 #endif
 #endif
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1

@@ -17,7 +17,9 @@
 // texel 7's last two are 0.
 // Texel 8 holds lum(C_0) of each fibre tangent q alone, (Σ_j w_jq over the four), on C_0's scale (all four lum(C_0)
 // with one tangent): the shells light each strip of a sector as one fibre at one tangent (shell_shade.glsl
-// SHELL_TILT_PICK). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
+// SHELL_TILT_PICK). Texel 9 holds the fibres' forward loss 1 − ā_f per channel (ā_f: zinke_forward, at the θd whose
+// 1 / cos is the 29th float, the lights' mean stretch), for the own cluster's forward-scattered light (shell_shade.glsl
+// SHELL_OWN 2). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
 //
 // With SHELL_CULL_LIGHTS N (the light count, up to kMaxCulledLights; ShellSettings::light_cull > 0) each sample lights only the lights that
 // carry its light: light j's share is estimated as b_j = |lum(L_j)| ∫G_j (T̃_j + d_f max_c(T_f − T̃_j)), its power times
@@ -164,4 +166,6 @@ void main() {
     for (int m = 0; m < 8; ++m)
         imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 8), tangent_lum);
+    vec3 a_f = fetch_ms_forward(acos(clamp(1.0 / v[28], 0.0, 1.0)), hp.sigma_a).rgb;
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 9), vec4(vec3(1.0) - a_f, 0.0));
 }

@@ -28,7 +28,8 @@
 //   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV
 //   SHELL_FOURIER     harmonics of re in θl used, 1..4 (the database stores 4): 1 reads one atlas tile per
 //                     record, 2 and 3 two, 4 all three; the dropped ones are zero
-//   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none
+//   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none;
+//                     2: as 1 with the light its fibres scatter forward (ShellSettings::own_cluster_forward)
 //   SHELL_TANGENTS    with SHELL_LIGHTING 2: the fibres' tangents each light is evaluated at (shell_light.glsl)
 //   SHELL_FOLD        1: two layers from the outer one's mesh (ShellSettings::fold_level, shell_shade_pair below)
 //   SHELL_TILT_PICK   1: each strip of a sector lit as one fibre at one of the four fibre tangents (ShellSettings::
@@ -68,9 +69,12 @@
 #ifndef SHELL_SECTOR_PICK
 #define SHELL_SECTOR_PICK 0
 #endif
-#if SHELL_OWN == 1
+#if SHELL_OWN != 0
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
 #include "shaders/lighting/own_cluster.glsl"
+#endif
+#if SHELL_OWN == 2
+uniform float u_own_d_f;  // Zinke's d_f (HairParameters::d_f) for the own cluster's forward-scattered light
 #endif
 
 #if SHELL_LIGHTING == 2
@@ -89,6 +93,9 @@ centroid in vec4 v_L6;
 centroid in float v_L7;
 #if SHELL_TILT_PICK == 1
 centroid in vec4 v_L8;
+#endif
+#if SHELL_OWN == 2
+centroid in vec3 v_L9;
 #endif
 #endif
 
@@ -251,7 +258,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec2 t2 = mix(top2.xy, bot2.xy, gamma);
 #endif
     float alpha = clamp(t0.x, 0.0, 1.0);
-#if SHELL_OWN == 1
+#if SHELL_OWN != 0
     // The own cluster's fibres along one radius at this (i, k), in eq. 12's units: κ_shadow Σ ᾱ of every layer;
     // the light's side and the fragment's depth decide how much of it lies toward the light (own_cluster.glsl).
     float tau_r = u_kappa_shadow * mix(sectors[top].shadow.y, sectors[bottom].shadow.y, gamma);
@@ -320,6 +327,29 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
                               t2.xy, h01, h23, h4);
         float re = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
                    d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
+#elif SHELL_OWN == 2
+        // As SHELL_OWN 1 with the forward-scattered light (own_cluster_forward_series), per channel, at this light's
+        // own angle to the axis: ā_f at θd = its longitudinal angle, as the lighting pass takes it.
+        vec3 lj = normalize(lights[j].direction_lambda.xyz);
+        float tau_j = tau_r * own_cluster_stretch(lj, T);
+        vec3 loss = vec3(1.0) - fetch_ms_forward(safe_asin(dot(lj, T)), hp.sigma_a).rgb;
+        float p0;
+        vec4 p1234;
+        vec4 p5678;
+        own_cluster_series(tau_j, rho, p0, p1234, p5678);
+        vec3 re;
+        for (int c = 0; c < 3; ++c) {
+            float q0;
+            vec4 q1234;
+            vec4 q5678;
+            own_cluster_forward_series(tau_j, rho, loss[c], u_own_d_f, p0, p1234, p5678, q0, q1234, q5678);
+            vec3 h01;
+            vec4 h23;
+            vec2 h4;
+            own_cluster_product(q0, q1234, q5678, t0.yzw, t1, t2.xy, h01, h23, h4);
+            re[c] = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
+                    d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
+        }
 #else
         float re = t0.y + d1 * (t0.z * cos(th) + t0.w * sin(th)) + d2 * (t1.x * cos(2.0 * th) + t1.y * sin(2.0 * th)) +
                    d3 * (t1.z * cos(3.0 * th) + t1.w * sin(3.0 * th)) + d4 * (t2.x * cos(4.0 * th) + t2.y * sin(4.0 * th));
@@ -382,11 +412,42 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         t2.xy = h4;
     }
 #endif
+#if SHELL_OWN == 2
+    // re(θl) times the own cluster's transmittance with its forward-scattered light, which differs per channel
+    // (own_cluster_forward_series): one product of the series per channel, each summed against its channel's sums.
+#if SHELL_LIGHTING == 1
+    vec3 loss = v_L9;
+#else
+    vec3 loss = lighting_fetch(texcoord.y, info.y, 9).xyz;
+#endif
+    vec3 sum;
+    {
+        float p0;
+        vec4 p1234;
+        vec4 p5678;
+        own_cluster_series(tau_r * L7, rho, p0, p1234, p5678);
+        for (int c = 0; c < 3; ++c) {
+            float q0;
+            vec4 q1234;
+            vec4 q5678;
+            own_cluster_forward_series(tau_r * L7, rho, loss[c], u_own_d_f, p0, p1234, p5678, q0, q1234, q5678);
+            vec3 h01;
+            vec4 h23;
+            vec2 h4;
+            own_cluster_product(q0, q1234, q5678, t0.yzw, t1, t2.xy, h01, h23, h4);
+            sum[c] = h01.x * C0[c] + h01.y * (C1[c] * e1.x + S1[c] * e1.y) + h01.z * (S1[c] * e1.x - C1[c] * e1.y) +
+                     h23.x * (C2[c] * e2.x + S2[c] * e2.y) + h23.y * (S2[c] * e2.x - C2[c] * e2.y) +
+                     h23.z * (C3[c] * e3.x + S3[c] * e3.y) + h23.w * (S3[c] * e3.x - C3[c] * e3.y) +
+                     h4.x * (C4[c] * e4.x + S4[c] * e4.y) + h4.y * (S4[c] * e4.x - C4[c] * e4.y);
+        }
+    }
+#else
     vec3 sum = t0.y * C0;
     sum += t0.z * (C1 * e1.x + S1 * e1.y) + t0.w * (S1 * e1.x - C1 * e1.y);
     sum += t1.x * (C2 * e2.x + S2 * e2.y) + t1.y * (S2 * e2.x - C2 * e2.y);
     sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
     sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
+#endif
 #if SHELL_TILT_PICK == 1
     {  // The strip's fibre at its one tangent: the sums scaled by that tangent's share of the light (texel 8).
 #if SHELL_LIGHTING == 1

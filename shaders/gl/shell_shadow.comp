@@ -47,6 +47,7 @@ uniform float u_width;        // the fibres' diameter 2r
 uniform int u_sample_count;
 uniform int u_light_count;
 uniform int u_rays;
+uniform int u_narrow_start;  // 1: rays start at most the own cluster's narrow half-axis out (ShellSettings::shadow_neighbours)
 uniform int u_rows;   // lighting samples per cluster
 uniform int u_lit_step;  // every u_lit_step-th is lit (the last is)
 uniform int u_used;   // lit samples per cluster
@@ -126,7 +127,7 @@ void main() {
         float c = srbf_lobe_cos(lambda, 1.0 - (float(r) + 0.5) / float(u_rays));
         float phi = GOLDEN_ANGLE * float(r);
         vec3 d = normalize(c * l + sqrt(max(1.0 - c * c, 0.0)) * (cos(phi) * e1 + sin(phi) * e2));
-        float start = own_cluster_exit(d, T, e1_own, s.position.w, s.tangent.w) + 2.0 * u_step;
+        float start = own_cluster_shadow_start(d, T, e1_own, s.position.w, s.tangent.w, u_narrow_start != 0) + 2.0 * u_step;
         vec2 depth = optical_depth(s.position.xyz + start * d, d);
         float tau = u_width * depth.x;
 #if SHADOW_BODY

@@ -65,6 +65,16 @@ COIF_FN float own_cluster_exit(vec3 d, vec3 T, vec3 e1, float A, float B) {
     return stretch / sqrt(max(x * x + y * y, 1e-12));
 }
 
+// Where the shadow pass starts a ray from the axis (before its two voxels of the grid's blur): where it leaves the own
+// cluster (own_cluster_exit), or with `narrow` (ShellSettings::shadow_neighbours) at most the narrow half-axis min(A, B)
+// times the stretch. The fitted clusters are flat ribbons that overlap: a ray leaving along the wide axis crosses the
+// neighbours' fibres inside the ellipse, which neither the grid (past them) nor the own cluster's factor (its own
+// layers) counted (docs/quality.md, "Forward scattering through the own cluster, and the neighbours in its ellipse").
+COIF_FN float own_cluster_shadow_start(vec3 d, vec3 T, vec3 e1, float A, float B, bool narrow) {
+    float exit_at = own_cluster_exit(d, T, e1, A, B);
+    return narrow ? min(exit_at, min(A, B) * own_cluster_stretch(d, T)) : exit_at;
+}
+
 COIF_FN float own_cluster_transmittance(float tau, float rho, float cos_d, float sin_d) {
     return exp(-tau * own_cluster_path(rho, cos_d, sin_d));
 }
@@ -79,28 +89,39 @@ COIF_FN float own_cluster_rho_at(int j) {
     return 1.0 - v * v;
 }
 
-// O's cosine harmonics at (τ, ρ): o0123 = (o_0, …, o_3), o4567, o8. Three bilinear fetches.
+// O's cosine harmonics at (τ, ρ): o0123 = (o_0, …, o_3), o4567, o8. Three bilinear fetches; two where the shells use
+// re's harmonics up to 3 only (SHELL_FOURIER ≤ 3): o_8 multiplies re's fourth harmonic alone in the product below, so
+// it is left 0 there without changing h.
 COIF_FN void fetch_own_cluster(float tau, float rho, OUT(vec4) o0123, OUT(vec4) o4567, OUT(float) o8) {
     float u = lut_coord_lin(tau / (tau + OWN_TAU_SCALE), 0.0, OWN_X_MAX, OWN_N_TAU);
     float row = sqrt(clamp(1.0 - rho, 0.0, 1.0)) * float(OWN_N_RHO - 1) + 0.5;
     float rows = float(3 * OWN_N_RHO);
     o0123 = COIF_LUT(lut_own_cluster, vec2(u, row / rows));
     o4567 = COIF_LUT(lut_own_cluster, vec2(u, (row + float(OWN_N_RHO)) / rows));
+#if defined(SHELL_FOURIER) && SHELL_FOURIER <= 3
+    o8 = 0.0;
+#else
     o8 = COIF_LUT(lut_own_cluster, vec2(u, (row + float(2 * OWN_N_RHO)) / rows)).x;
+#endif
 }
 
-// re's harmonics in, h = re · O's out, in the shells' layout: c01 = (a0, a1, b1), c23 = (a2, b2, a3, b3),
-// c4 = (a4, b4), re(Δ) = a0 + Σ_k a_k cos kΔ + b_k sin kΔ. With p_0 = o_0 and p_m = o_m / 2 (O as Σ_m p_|m| e^{imΔ}):
-//   h_0 = a0 p_0 + Σ_k a_k p_k,  a_n = 2 a0 p_n + Σ_k a_k (p_|n−k| + p_{n+k}),  b_n = Σ_k b_k (p_|n−k| − p_{n+k}).
-COIF_FN void own_cluster_harmonics(float tau, float rho, vec3 c01, vec4 c23, vec2 c4, OUT(vec3) h01, OUT(vec4) h23,
-                                   OUT(vec2) h4) {
+// O's harmonics at (τ, ρ) in the form the product below takes: p_0 = o_0 and p_m = o_m / 2 (O as Σ_m p_|m| e^{imΔ}),
+// p1234 = (p_1, …, p_4), p5678 = (p_5, …, p_8). Three bilinear fetches.
+COIF_FN void own_cluster_series(float tau, float rho, OUT(float) p0, OUT(vec4) p1234, OUT(vec4) p5678) {
     vec4 o0123;
     vec4 o4567;
     float o8;
     fetch_own_cluster(tau, rho, o0123, o4567, o8);
-    float p0 = o0123.x;
-    vec4 p1234 = 0.5 * vec4(o0123.y, o0123.z, o0123.w, o4567.x);
-    vec4 p5678 = 0.5 * vec4(o4567.y, o4567.z, o4567.w, o8);
+    p0 = o0123.x;
+    p1234 = 0.5 * vec4(o0123.y, o0123.z, o0123.w, o4567.x);
+    p5678 = 0.5 * vec4(o4567.y, o4567.z, o4567.w, o8);
+}
+
+// re's harmonics in, h = re · O's out, in the shells' layout: c01 = (a0, a1, b1), c23 = (a2, b2, a3, b3),
+// c4 = (a4, b4), re(Δ) = a0 + Σ_k a_k cos kΔ + b_k sin kΔ; O's series (p0, p1234, p5678) as own_cluster_series gives it:
+//   h_0 = a0 p_0 + Σ_k a_k p_k,  a_n = 2 a0 p_n + Σ_k a_k (p_|n−k| + p_{n+k}),  b_n = Σ_k b_k (p_|n−k| − p_{n+k}).
+COIF_FN void own_cluster_product(float p0, vec4 p1234, vec4 p5678, vec3 c01, vec4 c23, vec2 c4, OUT(vec3) h01,
+                                 OUT(vec4) h23, OUT(vec2) h4) {
     // For n = 1..4 (the vectors' components): u_k = p_|n−k|, w_k = p_{n+k}.
     vec4 u1 = vec4(p0, p1234.x, p1234.y, p1234.z);
     vec4 u2 = vec4(p1234.x, p0, p1234.x, p1234.y);
@@ -118,6 +139,30 @@ COIF_FN void own_cluster_harmonics(float tau, float rho, vec3 c01, vec4 c23, vec
     h01 = vec3(a0 * p0 + dot(a, p1234), an.x, bn.x);
     h23 = vec4(an.y, bn.y, an.z, bn.z);
     h4 = vec2(an.w, bn.w);
+}
+
+// h = re · O at (τ, ρ): own_cluster_series then own_cluster_product.
+COIF_FN void own_cluster_harmonics(float tau, float rho, vec3 c01, vec4 c23, vec2 c4, OUT(vec3) h01, OUT(vec4) h23,
+                                   OUT(vec2) h4) {
+    float p0;
+    vec4 p1234;
+    vec4 p5678;
+    own_cluster_series(tau, rho, p0, p1234, p5678);
+    own_cluster_product(p0, p1234, p5678, c01, c23, c4, h01, h23, h4);
+}
+
+// The own cluster with the light that its fibres scatter forward (SHELL_OWN 2; docs/quality.md, "Forward scattering
+// through the own cluster"): as the shadows between clusters split a light's path (shaders/lighting/srbf_shadowed.glsl),
+// the light reaching a fibre through its own cluster is the unscattered share O(τ) plus d_f times the forward-scattered
+// share's excess, d_f (O_f − O) with O_f = E[ā_f^K] = O(τ (1 − ā_f)) for K Poisson of mean τ s: in all
+//     (1 − d_f) O(τ) + d_f O(τ (1 − ā_f))     per channel (ā_f per channel: the fibre's forward attenuation).
+// Its series, for one channel of loss = 1 − ā_f; own_cluster_product then takes it as it takes O's.
+COIF_FN void own_cluster_forward_series(float tau, float rho, float loss, float d_f, float p0, vec4 p1234, vec4 p5678,
+                                        OUT(float) q0, OUT(vec4) q1234, OUT(vec4) q5678) {
+    own_cluster_series(tau * loss, rho, q0, q1234, q5678);
+    q0 = mix(p0, q0, d_f);
+    q1234 = mix(p1234, q1234, d_f);
+    q5678 = mix(p5678, q5678, d_f);
 }
 
 #endif

@@ -220,6 +220,15 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     EXPECT_EQ(renderer.timings().shadows_ms, 0.0);
     EXPECT_EQ(renderer.read_shadows(), sh);
     settings.own_cluster_shadow = true;
+    // Where the rays start is the pass's: switching the neighbours in the ellipse reruns it. These clusters are round, so
+    // the narrow half-axis is where the rays leave them and the pass writes the same (shading.OwnCluster.* tests the rule).
+    settings.shadow_neighbours = !settings.shadow_neighbours;
+    renderer.draw(camera, settings);
+    EXPECT_GT(renderer.timings().shadows_ms, 0.0);
+    const std::vector<glm::vec2> switched = renderer.read_shadows();
+    for (std::size_t i = 0; i < sh.size(); ++i) EXPECT_NEAR(switched[i].y, sh[i].y, 1e-4f * sh[i].y + 1e-6f) << i;
+    settings.shadow_neighbours = !settings.shadow_neighbours;
+    renderer.draw(camera, settings);
 
     // The pass is cached: the next frame does not rerun it; fibres of half the radius meet half as many
     // (the same march times r; float rounding of the sums: 1e-5).

@@ -65,6 +65,19 @@ TEST(OwnCluster, RaysLeaveAFlatClusterThroughItsEllipse) {
     EXPECT_NEAR(glsl::own_cluster_exit(glm::normalize(vec3(1.0f, 1.0f, 1.0f)), T, e1, 2.0f, 2.0f),
                 2.0f * glsl::own_cluster_stretch(glm::normalize(vec3(1.0f, 1.0f, 1.0f)), T), 1e-5f);
     EXPECT_FLOAT_EQ(glsl::own_cluster_exit(T, T, e1, A, B), 4.0f * A);
+    // Counting the neighbours in the ellipse, a ray starts at most the narrow half-axis out (times its stretch): along
+    // the wide axis at B, not A; along the narrow one where it leaves; a round cluster where it leaves, either way.
+    EXPECT_FLOAT_EQ(glsl::own_cluster_shadow_start(e1, T, e1, A, B, false), glsl::own_cluster_exit(e1, T, e1, A, B));
+    EXPECT_NEAR(glsl::own_cluster_shadow_start(e1, T, e1, A, B, true), B, 1e-5f);
+    EXPECT_NEAR(glsl::own_cluster_shadow_start(-e2, T, e1, A, B, true), B, 1e-5f);
+    const vec3 tilted = glm::normalize(e1 + T);
+    EXPECT_NEAR(glsl::own_cluster_shadow_start(tilted, T, e1, A, B, true), B * std::sqrt(2.0f), 1e-5f);
+    for (const float a : {0.3f, 1.0f, 2.0f}) {
+        const vec3 u = std::cos(a) * e1 + std::sin(a) * e2;
+        EXPECT_LE(glsl::own_cluster_shadow_start(u, T, e1, A, B, true), glsl::own_cluster_exit(u, T, e1, A, B) + 1e-6f) << a;
+        EXPECT_NEAR(glsl::own_cluster_shadow_start(u, T, e1, 2.0f, 2.0f, true), glsl::own_cluster_exit(u, T, e1, 2.0f, 2.0f),
+                    1e-5f) << a;
+    }
 }
 
 // re(Δ) of the shells' layout at Δ.
@@ -137,6 +150,59 @@ TEST(OwnCluster, HarmonicsOfTheProductMatchDirectIntegration) {
     // The side facing the light keeps more of it: with re = 1 and the light at Δ = 0, h(0) > h(π).
     glsl::own_cluster_harmonics(1.5f, 0.8f, vec3(1.0f, 0.0f, 0.0f), vec4(0.0f), vec2(0.0f), h01, h23, h4);
     EXPECT_GT(series(h01, h23, h4, 0.0), 2.0f * series(h01, h23, h4, std::numbers::pi));
+}
+
+// With the forward-scattered light (SHELL_OWN 2) each channel's factor is (1 − d_f) O(τ) + d_f O(τ · loss): its series
+// times re's must be that function's harmonics, integrated directly. The limits: loss 1 (fibres that pass all light
+// forward scatter none of it away) or d_f 0 give O's own product; loss 0 gives (1 − d_f) O + d_f, no shadow for
+// that share. Tolerance: the table's bilinear read, as in HarmonicsOfTheProductMatchDirectIntegration (1e-3 of re's mean).
+TEST(OwnCluster, ForwardScatteredLightIsTheMixOfTwoDepths) {
+    const shading::LutBinding tables(shading::global_lighting_tables().set());
+    const vec3 c01(0.8f, 0.3f, -0.2f);
+    const vec4 c23(0.1f, 0.05f, -0.04f, 0.02f);
+    const vec2 c4(0.01f, -0.015f);
+    double worst = 0.0;
+    for (const float tau : {0.5f, 2.71f, 9.0f})
+        for (const float rho : {0.4f, 0.9f, 1.0f})
+            for (const float loss : {0.0f, 0.64f, 0.85f, 1.0f})
+                for (const float d_f : {0.0f, 0.7f}) {
+                    float p0;
+                    vec4 p1234;
+                    vec4 p5678;
+                    glsl::own_cluster_series(tau, rho, p0, p1234, p5678);
+                    float q0;
+                    vec4 q1234;
+                    vec4 q5678;
+                    glsl::own_cluster_forward_series(tau, rho, loss, d_f, p0, p1234, p5678, q0, q1234, q5678);
+                    vec3 h01;
+                    vec4 h23;
+                    vec2 h4;
+                    glsl::own_cluster_product(q0, q1234, q5678, c01, c23, c4, h01, h23, h4);
+                    const auto direct = product_harmonics(c01, c23, c4, tau, rho);
+                    const auto forward = product_harmonics(c01, c23, c4, tau * loss, rho);
+                    const float got[9] = {h01.x, h01.y, h01.z, h23.x, h23.y, h23.z, h23.w, h4.x, h4.y};
+                    for (int i = 0; i < 9; ++i) {
+                        const double want = (1.0 - d_f) * direct[i] + d_f * forward[i];
+                        worst = std::max(worst, std::abs(got[i] - want) / 0.8);
+                        EXPECT_NEAR(got[i], want, 1e-3 * 0.8)
+                            << "tau " << tau << " rho " << rho << " loss " << loss << " d_f " << d_f << " coefficient " << i;
+                    }
+                }
+    std::printf("worst error of the forward mix's harmonics, of re's mean: %.2e\n", worst);
+    // More light reaches the fibre with its forward-scattered share than without, and at most as much as unshadowed.
+    vec3 h01;
+    vec4 h23;
+    vec2 h4;
+    glsl::own_cluster_harmonics(3.0f, 0.5f, vec3(1.0f, 0.0f, 0.0f), vec4(0.0f), vec2(0.0f), h01, h23, h4);
+    const float unscattered = h01.x;
+    float p0;
+    vec4 p1234;
+    vec4 p5678;
+    glsl::own_cluster_series(3.0f, 0.5f, p0, p1234, p5678);
+    glsl::own_cluster_forward_series(3.0f, 0.5f, 0.64f, 0.7f, p0, p1234, p5678, p0, p1234, p5678);
+    glsl::own_cluster_product(p0, p1234, p5678, vec3(1.0f, 0.0f, 0.0f), vec4(0.0f), vec2(0.0f), h01, h23, h4);
+    EXPECT_GT(h01.x, 1.5f * unscattered);
+    EXPECT_LT(h01.x, 1.0f);
 }
 
 }  // namespace

@@ -88,6 +88,8 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.hair.d_f = 0.4f;
     s.shadows = false;
     s.own_cluster_shadow = false;
+    s.own_cluster_forward = !gl::ShellSettings{}.own_cluster_forward;
+    s.shadow_neighbours = !gl::ShellSettings{}.shadow_neighbours;
     s.tilt_per_strip = false;
     s.sector_per_strip = false;
     s.fiber_radius = 0.03f;

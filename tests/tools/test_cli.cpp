@@ -476,10 +476,13 @@ TEST(CliSlow, FramesBeyondTheFragmentStorageAreDrawnInTiles) {
 }
 
 // Quality presets: each one's image of the default scene against full's (coif compare's appearance metrics), within
-// bounds set from what it is for. high, the default, must hold the rule that chose it (blurred PSNR >= 35 dB, detail
-// ratio within 10 %, radiance within 3 %); medium and low are cheaper and looser, and low blends clusters sorted, whose
-// order errors brighten the hair (measured at 720x480: 24.2 dB, radiance 1.003-1.245). At 240x160, measured: high
-// 44.0 dB / detail 0.994 / radiance 0.998-1.000; medium 42.1 / 1.090 / 1.005-1.013; low 25.9 / 1.252 / 1.002-1.250.
+// bounds set from what it is for. high, the default, must hold the rule that chose it (blurred PSNR >= 35 dB at 720x480,
+// detail ratio within 10 %, radiance within 3 %); medium and low are cheaper and looser, and low blends clusters sorted,
+// whose order errors brighten the hair (measured at 720x480: 24.2 dB, radiance 1.003-1.245). Here, at 240x160, each
+// strip of a sector draws its fibre tangent and sector by a hash (docs/quality.md, "One tangent per strip"), which the
+// coarser levels of detail move onto other pixels: high measures 35.0 dB (39.0 at 720x480, `coif bench render`) / detail
+// 1.018 / radiance 1.002-1.007; medium 33.7 / 1.038 / 1.003-1.007; low 28.2 / 0.884 / 0.894-1.084. high is asked for
+// 34 dB here.
 // An unknown preset is refused (exit 2 on the command line, 1 in a parameters file, as every bad key there).
 TEST(Cli, QualityPresetsStayWithinTheirBoundsOfFull) {
     const auto dir = test::scratch_dir("cli-quality");
@@ -495,7 +498,7 @@ TEST(Cli, QualityPresetsStayWithinTheirBoundsOfFull) {
         const char* quality;
         double min_blurred_psnr, detail_lo, detail_hi, radiance_lo, radiance_hi;
     };
-    for (const Bound& b : {Bound{"high", 35.0, 0.9, 1.1, 0.97, 1.03}, Bound{"medium", 30.0, 0.8, 1.25, 0.95, 1.05},
+    for (const Bound& b : {Bound{"high", 34.0, 0.9, 1.1, 0.97, 1.03}, Bound{"medium", 30.0, 0.8, 1.25, 0.95, 1.05},
                            Bound{"low", 20.0, 0.7, 1.5, 0.8, 1.35}}) {
         const CompareResult c = compare_images(full, render(b.quality), CompareOptions{}, "full", b.quality);
         const AppearanceMetrics& a = c.appearance;
