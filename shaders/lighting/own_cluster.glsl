@@ -152,10 +152,11 @@ COIF_FN void own_cluster_harmonics(float tau, float rho, vec3 c01, vec4 c23, vec
 }
 
 // The own cluster with the light that its fibres scatter forward (SHELL_OWN 2; docs/quality.md, "Forward scattering
-// through the own cluster"): as the shadows between clusters split a light's path (shaders/lighting/srbf_shadowed.glsl),
-// the light reaching a fibre through its own cluster is the unscattered share O(τ) plus d_f times the forward-scattered
-// share's excess, d_f (O_f − O) with O_f = E[ā_f^K] = O(τ (1 − ā_f)) for K Poisson of mean τ s: in all
-//     (1 − d_f) O(τ) + d_f O(τ (1 − ā_f))     per channel (ā_f per channel: the fibre's forward attenuation).
+// through the own cluster, and the neighbours in its ellipse"). As the shadows between clusters split a light's path
+// (shaders/lighting/srbf_shadowed.glsl), the light reaching a fibre through its own cluster is the unscattered share
+// O(τ) plus d_f times the forward-scattered share's excess, d_f (O_f − O), with O_f = E[ā_f^K] = O(τ (1 − ā_f)) for K
+// Poisson of mean τ s. In all, per channel (ā_f: the fibre's forward attenuation in that channel):
+//     (1 − d_f) O(τ) + d_f O(τ (1 − ā_f))
 // Its series, for one channel of loss = 1 − ā_f; own_cluster_product then takes it as it takes O's.
 COIF_FN void own_cluster_forward_series(float tau, float rho, float loss, float d_f, float p0, vec4 p1234, vec4 p5678,
                                         OUT(float) q0, OUT(vec4) q1234, OUT(vec4) q5678) {
