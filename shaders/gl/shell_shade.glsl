@@ -213,6 +213,28 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
 #endif
 }
 
+#if SHELL_LIGHTING == 2
+// re at a light's in-plane azimuth θl from its harmonics (c01 = (a0, a1, b1), c23 = (a2, b2, a3, b3), c4 = (a4, b4)),
+// harmonic k damped by d_k for the light's spread.
+float re_at(vec3 c01, vec4 c23, vec2 c4, float th, float d1, float d2, float d3, float d4) {
+    return c01.x + d1 * (c01.y * cos(th) + c01.z * sin(th)) + d2 * (c23.x * cos(2.0 * th) + c23.y * sin(2.0 * th)) +
+           d3 * (c23.z * cos(3.0 * th) + c23.w * sin(3.0 * th)) + d4 * (c4.x * cos(4.0 * th) + c4.y * sin(4.0 * th));
+}
+#else
+// Σ_j w_j re(θl_j) from the lighting sums turned to the fragment's radial axis: re's harmonics per channel (h[0] = a0,
+// h[2k − 1] = a_k, h[2k] = b_k) against C_k, S_k, with e_k = (cos kψr, sin kψr):
+//   Σ_j w_j cos k(ψj − ψr) = C_k cos kψr + S_k sin kψr;  Σ_j w_j sin k(ψj − ψr) = S_k cos kψr − C_k sin kψr.
+vec3 fourier_sum(vec3 h[9], vec3 C0, vec3 C1, vec3 S1, vec3 C2, vec3 S2, vec3 C3, vec3 S3, vec3 C4, vec3 S4, vec2 e1,
+                 vec2 e2, vec2 e3, vec2 e4) {
+    vec3 sum = h[0] * C0;
+    sum += h[1] * (C1 * e1.x + S1 * e1.y) + h[2] * (S1 * e1.x - C1 * e1.y);
+    sum += h[3] * (C2 * e2.x + S2 * e2.y) + h[4] * (S2 * e2.x - C2 * e2.y);
+    sum += h[5] * (C3 * e3.x + S3 * e3.y) + h[6] * (S3 * e3.x - C3 * e3.y);
+    sum += h[7] * (C4 * e4.x + S4 * e4.y) + h[8] * (S4 * e4.x - C4 * e4.y);
+    return sum;
+}
+#endif
+
 // One layer `layer` (its mesh's surface at `rho` cluster radii) of the HSV at this fragment.
 vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_normal, vec2 texcoord, uvec2 info, int layer,
                       float rho) {
@@ -325,8 +347,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         vec2 h4;
         own_cluster_harmonics(tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), rho, t0.yzw, t1,
                               t2.xy, h01, h23, h4);
-        float re = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
-                   d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
+        float re = re_at(h01, h23, h4, th, d1, d2, d3, d4);
 #elif SHELL_OWN == 2
         // As SHELL_OWN 1 with the forward-scattered light (own_cluster_forward_series), per channel, at this light's
         // own angle to the axis: ā_f at θd = its longitudinal angle, as the lighting pass takes it.
@@ -347,12 +368,10 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
             vec4 h23;
             vec2 h4;
             own_cluster_product(q0, q1234, q5678, t0.yzw, t1, t2.xy, h01, h23, h4);
-            re[c] = h01.x + d1 * (h01.y * cos(th) + h01.z * sin(th)) + d2 * (h23.x * cos(2.0 * th) + h23.y * sin(2.0 * th)) +
-                    d3 * (h23.z * cos(3.0 * th) + h23.w * sin(3.0 * th)) + d4 * (h4.x * cos(4.0 * th) + h4.y * sin(4.0 * th));
+            re[c] = re_at(h01, h23, h4, th, d1, d2, d3, d4);
         }
 #else
-        float re = t0.y + d1 * (t0.z * cos(th) + t0.w * sin(th)) + d2 * (t1.x * cos(2.0 * th) + t1.y * sin(2.0 * th)) +
-                   d3 * (t1.z * cos(3.0 * th) + t1.w * sin(3.0 * th)) + d4 * (t2.x * cos(4.0 * th) + t2.y * sin(4.0 * th));
+        float re = re_at(t0.yzw, t1, t2.xy, th, d1, d2, d3, d4);
 #endif
         lit += wj * re;
         C0 += wj;
@@ -392,8 +411,8 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 C3 = vec3(L3.w, L4.xy), S3 = vec3(L4.zw, L5.x);
     vec3 C4 = L5.yzw, S4 = L6.xyz;
     vec3 r0 = axis_normal - dot(axis_normal, T) * T;
-    // ψr = sector_azimuth(r, T, r0) without the angle: (cos ψr, sin ψr) = (r · r0, r · (T × r0)), both unit ⟂ T.
-    // Σ_j w_j cos h(ψj − ψr) = C_h cos hψr + S_h sin hψr;  Σ_j w_j sin h(ψj − ψr) = S_h cos hψr − C_h sin hψr.
+    // ψr = sector_azimuth(r, T, r0) without the angle: (cos ψr, sin ψr) = (r · r0, r · (T × r0)), both unit ⟂ T; the
+    // sums turn to it in fourier_sum.
     r0 = normalize(r0);
     vec2 e1 = vec2(dot(r, r0), dot(r, cross(T, r0)));
     float e1_len = length(e1);
@@ -414,13 +433,13 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #endif
 #if SHELL_OWN == 2
     // re(θl) times the own cluster's transmittance with its forward-scattered light, which differs per channel
-    // (own_cluster_forward_series): one product of the series per channel, each summed against its channel's sums.
+    // (own_cluster_forward_series): one product of the series per channel, each channel's harmonics in h[·][c].
 #if SHELL_LIGHTING == 1
     vec3 loss = v_L9;
 #else
     vec3 loss = lighting_fetch(texcoord.y, info.y, 9).xyz;
 #endif
-    vec3 sum;
+    vec3 h[9];
     {
         float p0;
         vec4 p1234;
@@ -435,19 +454,22 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
             vec4 h23;
             vec2 h4;
             own_cluster_product(q0, q1234, q5678, t0.yzw, t1, t2.xy, h01, h23, h4);
-            sum[c] = h01.x * C0[c] + h01.y * (C1[c] * e1.x + S1[c] * e1.y) + h01.z * (S1[c] * e1.x - C1[c] * e1.y) +
-                     h23.x * (C2[c] * e2.x + S2[c] * e2.y) + h23.y * (S2[c] * e2.x - C2[c] * e2.y) +
-                     h23.z * (C3[c] * e3.x + S3[c] * e3.y) + h23.w * (S3[c] * e3.x - C3[c] * e3.y) +
-                     h4.x * (C4[c] * e4.x + S4[c] * e4.y) + h4.y * (S4[c] * e4.x - C4[c] * e4.y);
+            h[0][c] = h01.x;
+            h[1][c] = h01.y;
+            h[2][c] = h01.z;
+            h[3][c] = h23.x;
+            h[4][c] = h23.y;
+            h[5][c] = h23.z;
+            h[6][c] = h23.w;
+            h[7][c] = h4.x;
+            h[8][c] = h4.y;
         }
     }
 #else
-    vec3 sum = t0.y * C0;
-    sum += t0.z * (C1 * e1.x + S1 * e1.y) + t0.w * (S1 * e1.x - C1 * e1.y);
-    sum += t1.x * (C2 * e2.x + S2 * e2.y) + t1.y * (S2 * e2.x - C2 * e2.y);
-    sum += t1.z * (C3 * e3.x + S3 * e3.y) + t1.w * (S3 * e3.x - C3 * e3.y);
-    sum += t2.x * (C4 * e4.x + S4 * e4.y) + t2.y * (S4 * e4.x - C4 * e4.y);
+    vec3 h[9] = vec3[9](vec3(t0.y), vec3(t0.z), vec3(t0.w), vec3(t1.x), vec3(t1.y), vec3(t1.z), vec3(t1.w), vec3(t2.x),
+                        vec3(t2.y));
 #endif
+    vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
 #if SHELL_TILT_PICK == 1
     {  // The strip's fibre at its one tangent: the sums scaled by that tangent's share of the light (texel 8).
 #if SHELL_LIGHTING == 1
