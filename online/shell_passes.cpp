@@ -448,9 +448,10 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
             glUniform3fv(prog.uniform("u_eye"), 1, &view.eye.x);
             if (s.lighting_per_fragment)
                 lighting.bind_inputs(prog, gpu, s);
-            else if (s.own_cluster_shadow)
+            else if (s.own_cluster_shadow) {
                 lighting.bind_tables(prog);  // lut_own_cluster
-            if (s.own_cluster_shadow && s.own_cluster_forward) glUniform1f(prog.uniform("u_own_d_f"), s.hair.d_f);
+                if (s.own_cluster_forward) glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
+            }
         }
         if (exact) {
             glUniform1ui(prog.uniform("u_capacity"), static_cast<GLuint>(lists_->stats().capacity));

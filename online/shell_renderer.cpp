@@ -41,6 +41,16 @@ bool affine(const glm::mat4& M) { return M[0][3] == 0.0f && M[1][3] == 0.0f && M
 constexpr float kLightingStepMaxAngle = 4.0f * static_cast<float>(kPi) / 180.0f;
 }  // namespace
 
+// The shadow pass's inputs when it last ran (it reruns only when they or the lights change): the fibres' radius, the
+// lighting step it marched at and where its rays start (ShellSettings::shadow_neighbours).
+struct ShadowKey {
+    bool valid = false;
+    float radius = -1.0f;
+    int step = 0;
+    bool narrow = false;
+    bool operator==(const ShadowKey&) const = default;
+};
+
 // The lights of one instance of the hair as its own space sees them, and what depends on them: their shadows and the
 // lighting sums (draw_frame). Swapped into the ShellGpu while that instance is drawn.
 struct InstanceLights {
@@ -50,10 +60,7 @@ struct InstanceLights {
     Texture lighting;
     LightingKey lighting_key;  // what `lighting` holds the sums of
     std::uint64_t lights_stamp = 0;
-    bool shadows_valid = false;
-    float shadows_radius = -1.0f;
-    int shadows_step = 0;
-    bool shadows_narrow = false;
+    ShadowKey shadow_key;  // what `shadows` holds
     std::vector<int> levels;  // its clusters' levels of detail (ShellDraw::levels)
 };
 
@@ -64,11 +71,7 @@ struct ShellRenderer::Impl {
     ShellsPass shells_pass;
     PreparedShells shells;
     std::unique_ptr<ShellGpu> gpu;
-    // The shadow pass's inputs when it last ran (it reruns only when they or the lights change).
-    bool shadows_valid = false;
-    float shadows_radius = -1.0f;
-    int shadows_step = 0;   // the lighting step the shadows were marched at
-    bool shadows_narrow = false;  // ShellSettings::shadow_neighbours they were marched with
+    ShadowKey shadow_key;  // what gpu->shadows holds
     glm::vec2 jitter{0.0f};  // sub-pixel image shift of the next draw (render()'s supersampling), pixels
     ShellDraw::Detail detail = ShellDraw::Detail::follow;  // how the next draws pick levels of detail (render(): fresh, hold)
     // What gpu->lighting holds the sums of: a frame whose inputs are the same (render()'s shifted frames among them:
@@ -88,9 +91,9 @@ struct ShellRenderer::Impl {
     std::vector<std::uint32_t> shadow_strand_cluster;
 
     void invalidate_shadows() {
-        shadows_valid = false;
+        shadow_key.valid = false;
         lighting_key.valid = false;
-        for (InstanceLights& il : instances) il.shadows_valid = false, il.lighting_key.valid = false;
+        for (InstanceLights& il : instances) il.shadow_key.valid = false, il.lighting_key.valid = false;
     }
     // The hair's grid, grown to hold the body beside it (extend_grid), and the body's voxels on it; uploaded. Returns
     // the uploaded grid's dimensions.
@@ -123,10 +126,7 @@ struct ShellRenderer::Impl {
         std::swap(gpu->lighting, l.lighting);
         std::swap(lighting_key, l.lighting_key);
         std::swap(gpu->lights_stamp, l.lights_stamp);
-        std::swap(shadows_valid, l.shadows_valid);
-        std::swap(shadows_radius, l.shadows_radius);
-        std::swap(shadows_step, l.shadows_step);
-        std::swap(shadows_narrow, l.shadows_narrow);
+        std::swap(shadow_key, l.shadow_key);
     }
 };
 
@@ -204,7 +204,7 @@ ShellRenderer::~ShellRenderer() = default;
 void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
     impl_->gpu->set_lights(lights);
     impl_->lights.assign(lights.begin(), lights.end());
-    impl_->shadows_valid = false;
+    impl_->shadow_key.valid = false;
 }
 
 void ShellRenderer::set_absorption(const AbsorptionMap* map) { impl_->gpu->set_absorption(map); }
@@ -362,7 +362,7 @@ void ShellRenderer::draw_frame(const glm::mat4& view, const glm::mat4& projectio
             if (il.lights != turned_lights[i]) {
                 m.gpu->set_lights(turned_lights[i]);
                 il.lights = turned_lights[i];
-                m.shadows_valid = false;
+                m.shadow_key.valid = false;
             }
             ShellDraw d;
             d.target = target;
@@ -421,14 +421,10 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     const int step = m.lighting_step(s.lighting_step);
     const int shadow_step = s.lighting_per_fragment ? 1 : step;
     timings_.shadows_ms = 0;
-    if (!floor_only && s.shadows && gpu.light_count > 0 &&
-        (!m.shadows_valid || m.shadows_radius != radius || m.shadows_step != shadow_step ||
-         m.shadows_narrow != s.shadow_neighbours)) {
+    const ShadowKey shadow_key{true, radius, shadow_step, s.shadow_neighbours};
+    if (!floor_only && s.shadows && gpu.light_count > 0 && m.shadow_key != shadow_key) {
         timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours);
-        m.shadows_valid = true;
-        m.shadows_radius = radius;
-        m.shadows_step = shadow_step;
-        m.shadows_narrow = s.shadow_neighbours;
+        m.shadow_key = shadow_key;
         m.lighting_key.valid = false;  // the sums read the shadows
     }
 

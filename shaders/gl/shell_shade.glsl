@@ -73,8 +73,8 @@
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
 #include "shaders/lighting/own_cluster.glsl"
 #endif
-#if SHELL_OWN == 2
-uniform float u_own_d_f;  // Zinke's d_f (HairParameters::d_f) for the own cluster's forward-scattered light
+#if SHELL_OWN == 2 && SHELL_LIGHTING != 2
+uniform float u_d_f;  // Zinke's d_f for the own cluster's forward-scattered light (shell_light.glsl's, per fragment)
 #endif
 
 #if SHELL_LIGHTING == 2
@@ -363,7 +363,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
             float q0;
             vec4 q1234;
             vec4 q5678;
-            own_cluster_forward_series(tau_j, rho, loss[c], u_own_d_f, p0, p1234, p5678, q0, q1234, q5678);
+            own_cluster_forward_series(tau_j, rho, loss[c], u_d_f, p0, p1234, p5678, q0, q1234, q5678);
             vec3 h01;
             vec4 h23;
             vec2 h4;
@@ -449,7 +449,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
             float q0;
             vec4 q1234;
             vec4 q5678;
-            own_cluster_forward_series(tau_r * L7, rho, loss[c], u_own_d_f, p0, p1234, p5678, q0, q1234, q5678);
+            own_cluster_forward_series(tau_r * L7, rho, loss[c], u_d_f, p0, p1234, p5678, q0, q1234, q5678);
             vec3 h01;
             vec4 h23;
             vec2 h4;

@@ -10,9 +10,11 @@
 // from its centre; a wide one, λ = 2, sends 38 % of its light from the far hemisphere and three of 7 rays there);
 // T̃ = mean exp(−τ), n = mean τ over the rays. (A centre and a ring at min(λ, 1) rad, the earlier rule, missed the
 // far side of a wide light's lobe; docs/quality.md, "Each light's shadow rays by its own energy".) Each ray starts
-// where it leaves the own cluster (own_cluster_exit: its elliptic cross-section's radius in the ray's direction over the sine of the ray's
-// angle to the axis, at most 4 such radii, plus two voxels for the grid's blur): the own cluster shades each of its fibres by the fibre's side toward the light, in
-// the shells pass (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
+// where it leaves the own cluster (own_cluster_exit: its elliptic cross-section's radius in the ray's direction over the
+// sine of the ray's angle to the axis, at most 4 such radii), with u_narrow_start at most its narrow half-axis out, so
+// that the neighbours overlapping the ellipse count (own_cluster_shadow_start), plus two voxels for the grid's blur: the
+// own cluster shades each of its fibres by the fibre's side toward the light, in the shells pass
+// (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
 // earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
 //
 // Only the lit samples are marched: every u_lit_step-th of each cluster's u_rows (ShellSettings::lighting_step, as the
