@@ -136,7 +136,7 @@ void validate(const ShellSettings& s) {
     if (!(s.tangent_spread <= 60.0f * float(kPi / 180.0))) throw Error::parameter("tangent_spread", "must be at most 60 degrees");
     if (s.neighbours < 1 || s.neighbours > kMaxShellNeighbours)
         throw Error::parameter("neighbours", "must be 1.." + std::to_string(kMaxShellNeighbours));
-    if (s.fourier_order < 1 || s.fourier_order > 4) throw Error::parameter("fourier_order", "must be 1..4");
+    if (s.fourier_order < 0 || s.fourier_order > 4) throw Error::parameter("fourier_order", "must be 0..4");
 }
 
 }  // namespace

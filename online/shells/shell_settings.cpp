@@ -157,7 +157,9 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(radius);
     t.push_back(bool_param<S>("lighting_per_fragment", "every light per fragment (decision 3's reference; ~40x slower)",
                               [](auto& s) -> auto& { return s.lighting_per_fragment; }));
-    t.push_back(int_param<S>("fourier_order", 1, 4, "harmonics of re in theta_l used",
+    t.push_back(int_param<S>("fourier_order", 0, 4,
+                             "harmonics of re in theta_l used (0: re's light-independent mean a0 alone, no dependence on "
+                             "the light's azimuth about the cluster)",
                              [](auto& s) -> auto& { return s.fourier_order; }));
     t.push_back(int_param<S>("lighting_step", 1, 32,
                              "light every k-th lighting sample along a cluster, interpolate between (must divide the "

@@ -66,7 +66,8 @@ struct ShellSettings {
     // fibres' contrast; docs/quality.md ("Fibre detail") chose it by the detail ratio and the blurred PSNR against coif
     // reference.
     int neighbours = 1;
-    int fourier_order = 2;          // harmonics of re in θl used, 1..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md)
+    int fourier_order = 2;          // harmonics of re in θl used, 0..4 (the db stores 4; 2: 53 dB against 4, a third fewer fetches; docs/renderer.md;
+                                    // 0: a0 alone, docs/quality.md "re's dependence on the light is the tracer's Phong")
     glm::vec3 background = kDefaultBackground;  // linear RGB behind the hair
     int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact, weighted: render() averages round(√samples)² shifted frames
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)

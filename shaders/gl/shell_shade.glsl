@@ -26,8 +26,9 @@
 //                        at this fragment (its own T, V and radial axis; T̃, n interpolated between the
 //                        lighting samples along t) times re at that light's own azimuth
 //   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV
-//   SHELL_FOURIER     harmonics of re in θl used, 1..4 (the database stores 4): 1 reads one atlas tile per
-//                     record, 2 and 3 two, 4 all three; the dropped ones are zero
+//   SHELL_FOURIER     harmonics of re in θl used, 0..4 (the database stores 4): 0 and 1 read one atlas tile per
+//                     record, 2 and 3 two, 4 all three; the dropped ones are zero (0: re = a0, the same for every
+//                     light azimuth)
 //   SHELL_OWN         1: the own cluster's shadow per fragment (ShellSettings::own_cluster_shadow), 0: none;
 //                     2: as 1 with the light its fibres scatter forward (ShellSettings::own_cluster_forward)
 //   SHELL_TANGENTS    with SHELL_LIGHTING 2: the fibres' tangents each light is evaluated at (shell_light.glsl)
@@ -204,6 +205,9 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
     t0 = u_atlas_lo[0] + u_atlas_scale[0] * (t0 * inv);
 #if SHELL_FOURIER >= 2
     t1 = u_atlas_lo[1] + u_atlas_scale[1] * (t1 * inv);
+#endif
+#if SHELL_FOURIER == 0
+    t0.zw = vec2(0.0);
 #endif
 #if SHELL_FOURIER == 2
     t1.zw = vec2(0.0);

@@ -747,5 +747,58 @@ TEST(ShellRenderer, OwnClusterShadowDarkensTheSideAwayFromTheLight) {
     EXPECT_GT(on, 1.2 * off);
 }
 
+// fourier_order 0 reads re's mean a0 alone: the records' response to the light's azimuth about the cluster (the planar
+// tracer's Phong, docs/quality.md "re's dependence on the light is the tracer's Phong") is gone, and a fragment's light
+// is a0 times the lighting module's C_0 for every light. So the shaded image over the lighting alone (`debug` 3,
+// C_0 · α) is the same per pixel under a light from +x as under one from -x. Own-cluster shadow, shadows and the
+// strips' tangents are off, each of which depends on the light. Measured: the median |ln| of the two ratios' quotient
+// is 0.0002 at order 0 (bound 0.01: the layers of a pixel sit at slightly different t along the cluster) and 1.24 at
+// order 2, where re sends 3.5 times as much of the light from one side as from the other (bound: above 0.05).
+TEST(ShellRenderer, FourierOrderZeroLightsEveryFragmentAsA0TimesTheLighting) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    const Camera camera = front_camera(renderer, 96, 160);
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.shadows = false;
+    s.own_cluster_shadow = false;
+    s.tilt_per_strip = false;
+    s.background = glm::vec3(0.0f);
+    const auto shaded_over_lighting = [&](float x_sign, int order) {
+        SrbfLight light;
+        light.L = glm::vec3(1.0f);
+        light.omega = glm::normalize(glm::vec3(x_sign, 0.2f, 0.3f));
+        light.lambda = 0.2f;
+        const SrbfLight lights[] = {light};
+        renderer.set_lights(lights);
+        s.fourier_order = order;
+        s.debug = 0;
+        const Image shaded = renderer.render(camera, s);
+        s.debug = 3;
+        const Image lighting = renderer.render(camera, s);
+        std::vector<double> q(shaded.pixels.size() / 4, -1.0);
+        for (int y = 0; y < shaded.height; ++y)
+            for (int x = 0; x < shaded.width; ++x) {
+                const double a = shaded.at(x, y)[0] + shaded.at(x, y)[1] + shaded.at(x, y)[2];
+                const double b = lighting.at(x, y)[0] + lighting.at(x, y)[1] + lighting.at(x, y)[2];
+                if (lighting.at(x, y)[3] > 0.5f && b > 1e-4 && a > 1e-6) q[static_cast<std::size_t>(y * shaded.width + x)] = a / b;
+            }
+        return q;
+    };
+    const auto median_log_quotient = [&](int order) {
+        const std::vector<double> plus = shaded_over_lighting(1.0f, order), minus = shaded_over_lighting(-1.0f, order);
+        std::vector<double> d;
+        for (std::size_t i = 0; i < plus.size(); ++i)
+            if (plus[i] > 0 && minus[i] > 0) d.push_back(std::abs(std::log(plus[i] / minus[i])));
+        EXPECT_GT(d.size(), 500u) << "too few pixels lit from both sides";
+        std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+        return d.empty() ? 1e9 : d[d.size() / 2];
+    };
+    const double zero = median_log_quotient(0), two = median_log_quotient(2);
+    std::printf("median |ln| of (shaded / lighting) from +x over from -x: order 0 %.4f, order 2 %.4f\n", zero, two);
+    EXPECT_LT(zero, 0.01);
+    EXPECT_GT(two, 0.05);
+}
+
 }  // namespace
 }  // namespace coif

@@ -46,7 +46,7 @@ TEST_F(ShellSettingsFile, BadFilesAreRefusedAtTheirKey) {
     EXPECT_EQ(refusal(R"({"fiber_radius": 101})").rfind("JSON /fiber_radius: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"fiber_radius": -0.1})").rfind("JSON /fiber_radius: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"debug": 1.5})"), "JSON /debug: must be an integer 0..4");
-    EXPECT_EQ(refusal(R"({"fourier_order": 5})"), "JSON /fourier_order: must be an integer 1..4");
+    EXPECT_EQ(refusal(R"({"fourier_order": 5})"), "JSON /fourier_order: must be an integer 0..4");
     EXPECT_EQ(refusal(R"({"shadows": "yes"})"), "JSON /shadows: expected true or false");
     EXPECT_EQ(refusal("not json").rfind("byte ", 0), 0u);
     // Each value alone is in range, but 000's link β_TRT = 2 β_R is not: the whole hair is validated too.
