@@ -79,6 +79,12 @@ struct ShellStats {
     // coif reference's auto fibre radius of the same strands as oriented (models/strands.h auto_fiber_radius):
     // the radius the shadows between clusters count unless ShellSettings::fiber_radius sets one.
     float auto_fiber_radius = 0;
+    // The own cluster's depth two ways (docs/quality.md, "re's dependence on the light is the tracer's Phong"): the
+    // strands' projected length across its narrow diameter at each lighting sample, as the shadow grid holds it
+    // (DensityGrid::integrate; times 2r, the reference's fibres a light crosses there), and Σ ᾱ of every layer at each
+    // sector (the shells' depth along one radius before κ_shadow, shaders/lighting/own_cluster.glsl): medians.
+    float own_cluster_length = 0;
+    float own_cluster_alpha = 0;
 };
 
 // Of the last draw, milliseconds: with ShellSettings::timed, wall-clock times of each pass between glFinish

@@ -287,6 +287,12 @@ void add_render(CLI::App& root) {
                          renderer.timings().shadows_ms,
                          sh.size(), direct / n, fibres / n);
         }
+        if (settings.own_cluster_shadow)
+            std::fprintf(stderr,
+                         "own cluster across its narrow diameter (medians): the reference's fibres %.1f, the shells' depth "
+                         "2 kappa_shadow sum(alpha) %.1f\n",
+                         2.0 * renderer.fiber_radius(settings) * st.own_cluster_length,
+                         2.0 * settings.kappa_shadow * st.own_cluster_alpha);
         if (settings.lod_pixels > 0.0f) {
             const auto& at = renderer.timings().clusters_at_level;
             std::fprintf(stderr, "level of detail (edges within %g px): clusters at levels 0 / 1 / 2: %zu / %zu / %zu; %zu triangles drawn\n",
