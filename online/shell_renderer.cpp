@@ -187,7 +187,9 @@ void ShellRenderer::set_hair(CookedShells cooked) {
         across.reserve(p.samples.size());
         for (const LightingSample& q : p.samples) {
             const glm::vec3 t = glm::normalize(glm::vec3(q.tangent));
-            const glm::vec3 n = glm::normalize(glm::vec3(q.normal) - glm::dot(glm::vec3(q.normal), t) * t);
+            const glm::vec3 n_across = glm::vec3(q.normal) - glm::dot(glm::vec3(q.normal), t) * t;
+            if (!(glm::length(n_across) > 1e-6f) || !std::isfinite(q.tangent.w)) continue;  // no frame: not counted
+            const glm::vec3 n = glm::normalize(n_across);
             const glm::vec3 e1 = std::cos(q.normal.w) * n + std::sin(q.normal.w) * glm::cross(t, n);  // sample_ellipse_axis
             const glm::vec3 e2 = glm::cross(t, e1);
             const float b = q.tangent.w;

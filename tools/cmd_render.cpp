@@ -227,6 +227,10 @@ void add_render(CLI::App& root) {
                          scene.database_label + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
         const auto& st = renderer.stats();
+        // The own cluster's depth across its narrow diameter (medians; ShellStats::own_cluster_length, _alpha): the
+        // reference's fibres there, and the shells' own-cluster optical depth 2 κ_shadow Σ ᾱ.
+        const double own_fibres = 2.0 * renderer.fiber_radius(settings) * st.own_cluster_length;
+        const double own_depth = 2.0 * settings.kappa_shadow * st.own_cluster_alpha;
         const double lights_lit = renderer.mean_lights_lit();  // per lighting sample (ShellSettings::light_cull skips some)
         if (o->json)
             coif::cli::print_json({{"output", o->output},
@@ -245,6 +249,7 @@ void add_render(CLI::App& root) {
                                    {"lighting_step", renderer.timings().lighting_step},
                                    {"tangent_spread_deg", coif::degrees(double(renderer.tangent_spread(settings)))},
                                    {"fiber_radius", renderer.fiber_radius(settings)},
+                                   {"own_cluster_across", {{"reference_fibres", own_fibres}, {"shells_depth", own_depth}}},
                                    {"coverage", coverage_json},
                                    {"load", {{"asset", from_asset},
                                              {"inputs_milliseconds", inputs_ms},
@@ -291,8 +296,7 @@ void add_render(CLI::App& root) {
             std::fprintf(stderr,
                          "own cluster across its narrow diameter (medians): the reference's fibres %.1f, the shells' depth "
                          "2 kappa_shadow sum(alpha) %.1f\n",
-                         2.0 * renderer.fiber_radius(settings) * st.own_cluster_length,
-                         2.0 * settings.kappa_shadow * st.own_cluster_alpha);
+                         own_fibres, own_depth);
         if (settings.lod_pixels > 0.0f) {
             const auto& at = renderer.timings().clusters_at_level;
             std::fprintf(stderr, "level of detail (edges within %g px): clusters at levels 0 / 1 / 2: %zu / %zu / %zu; %zu triangles drawn\n",

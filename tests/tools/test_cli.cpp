@@ -432,6 +432,9 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
             const auto ref = run_coif("reference --width 8 --height 8 --spp 1 --json -o '" + (dir / "f.exr").string() + "'");
             ASSERT_EQ(ref.exit_code, 0) << ref.err;
             EXPECT_EQ(doc["fiber_radius"].get<float>(), nlohmann::json::parse(ref.out)["fiber_radius"].get<float>());
+            // The own cluster's depth both ways is printed (measured 14.9 fibres, depth 4.3; docs/quality.md).
+            EXPECT_GT(doc["own_cluster_across"]["reference_fibres"].get<double>(), 1.0) << doc.dump();
+            EXPECT_GT(doc["own_cluster_across"]["shells_depth"].get<double>(), 0.1) << doc.dump();
         }
         const Image bg = read_image(dir / "b.exr");
         EXPECT_NEAR(bg.at(0, 0)[0], 0.3f, 1e-3f) << which;
