@@ -182,28 +182,6 @@ void ShellRenderer::set_hair(CookedShells cooked) {
     stats_.re_norm = atlas.re_norm;
     stats_.shadow_strands = cooked.shadow_strands;
     m.grid = std::move(cooked.grid);  // kept: set_body grows a copy of it
-    {
-        std::vector<float> across, alpha;
-        across.reserve(p.samples.size());
-        for (const LightingSample& q : p.samples) {
-            const glm::vec3 t = glm::normalize(glm::vec3(q.tangent));
-            const glm::vec3 n_across = glm::vec3(q.normal) - glm::dot(glm::vec3(q.normal), t) * t;
-            if (!(glm::length(n_across) > 1e-6f) || !std::isfinite(q.tangent.w)) continue;  // no frame: not counted
-            const glm::vec3 n = glm::normalize(n_across);
-            const glm::vec3 e1 = std::cos(q.normal.w) * n + std::sin(q.normal.w) * glm::cross(t, n);  // sample_ellipse_axis
-            const glm::vec3 e2 = glm::cross(t, e1);
-            const float b = q.tangent.w;
-            across.push_back(m.grid.integrate(glm::vec3(q.position) - b * e2, e2, 2.0f * b, 0.25f * m.grid.voxel));
-        }
-        for (const ShellSector& sector : p.sectors) alpha.push_back(sector.shadow.y);
-        const auto median = [](std::vector<float>& v) {
-            if (v.empty()) return 0.0f;
-            std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-            return v[v.size() / 2];
-        };
-        stats_.own_cluster_length = median(across);
-        stats_.own_cluster_alpha = median(alpha);
-    }
     if (cooked.shadow_strand_cluster.size() + 1 == cooked.shadow_source.offsets.size() && !cooked.shadow_source.points.empty()) {
         m.shadow_source = std::move(cooked.shadow_source);
         m.shadow_strand_cluster = std::move(cooked.shadow_strand_cluster);
@@ -222,6 +200,27 @@ void ShellRenderer::set_hair(CookedShells cooked) {
 }
 
 ShellRenderer::~ShellRenderer() = default;
+
+OwnClusterDepth ShellRenderer::own_cluster_depth() const {
+    const Impl& m = *impl_;
+    std::vector<float> across, alpha;
+    across.reserve(m.shells.samples.size());
+    for (const LightingSample& q : m.shells.samples) {
+        const glm::vec3 e1 = q.ellipse_axis();
+        if (e1 == glm::vec3(0.0f) || !std::isfinite(q.tangent.w)) continue;  // no frame: not counted
+        const glm::vec3 e2 = glm::cross(glm::normalize(glm::vec3(q.tangent)), e1);
+        const float b = q.tangent.w;
+        across.push_back(m.grid.integrate(glm::vec3(q.position) - b * e2, e2, 2.0f * b, 0.25f * m.grid.voxel));
+    }
+    alpha.reserve(m.shells.sectors.size());
+    for (const ShellSector& sector : m.shells.sectors) alpha.push_back(sector.shadow.y);
+    const auto median = [](std::vector<float>& v) {
+        if (v.empty()) return 0.0f;
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    return {median(across), median(alpha)};
+}
 
 void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
     impl_->gpu->set_lights(lights);

@@ -79,12 +79,15 @@ struct ShellStats {
     // coif reference's auto fibre radius of the same strands as oriented (models/strands.h auto_fiber_radius):
     // the radius the shadows between clusters count unless ShellSettings::fiber_radius sets one.
     float auto_fiber_radius = 0;
-    // The own cluster's depth two ways (docs/quality.md, "re's dependence on the light is the tracer's Phong"): the
-    // strands' projected length across its narrow diameter at each lighting sample, as the shadow grid holds it
-    // (DensityGrid::integrate; times 2r, the reference's fibres a light crosses there), and Σ ᾱ of every layer at each
-    // sector (the shells' depth along one radius before κ_shadow, shaders/lighting/own_cluster.glsl): medians.
-    float own_cluster_length = 0;
-    float own_cluster_alpha = 0;
+};
+
+// The own cluster's depth two ways (docs/quality.md, "re's dependence on the light is the tracer's Phong"), medians:
+// `length`, the strands' projected length across its narrow diameter at each lighting sample, as the shadow grid holds
+// it (DensityGrid::integrate; times 2r, the reference's fibres a light crosses there), and `alpha`, Σ ᾱ of every layer
+// at each sector (the shells' depth along one radius before κ_shadow, shaders/lighting/own_cluster.glsl).
+struct OwnClusterDepth {
+    float length = 0;
+    float alpha = 0;
 };
 
 // Of the last draw, milliseconds: with ShellSettings::timed, wall-clock times of each pass between glFinish
@@ -179,6 +182,9 @@ public:
     void limit_fragment_storage(std::uint64_t nodes);
 
     const ShellStats& stats() const { return stats_; }
+    // OwnClusterDepth of the hair as it stands (its samples and shadow grid move together), measured on each call:
+    // one march across every lighting sample, for whoever reports it (coif render), not at every set_hair.
+    OwnClusterDepth own_cluster_depth() const;
     // The RMS tangent spread (radians) the lighting uses with `settings`: settings.tangent_spread when ≥ 0, else
     // the RMS of the style's measured tilts, stats().tangent_spread.
     float tangent_spread(const ShellSettings& settings) const {

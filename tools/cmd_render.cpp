@@ -227,10 +227,11 @@ void add_render(CLI::App& root) {
                          scene.database_label + "; lights " + scene.lights_label;
         coif::write_image(o->output, image, wo);
         const auto& st = renderer.stats();
-        // The own cluster's depth across its narrow diameter (medians; ShellStats::own_cluster_length, _alpha): the
+        // The own cluster's depth across its narrow diameter (medians; ShellRenderer::own_cluster_depth): the
         // reference's fibres there, and the shells' own-cluster optical depth 2 κ_shadow Σ ᾱ.
-        const double own_fibres = 2.0 * renderer.fiber_radius(settings) * st.own_cluster_length;
-        const double own_depth = 2.0 * settings.kappa_shadow * st.own_cluster_alpha;
+        const coif::gl::OwnClusterDepth own = renderer.own_cluster_depth();
+        const double own_fibres = 2.0 * renderer.fiber_radius(settings) * own.length;
+        const double own_depth = 2.0 * settings.kappa_shadow * own.alpha;
         const double lights_lit = renderer.mean_lights_lit();  // per lighting sample (ShellSettings::light_cull skips some)
         if (o->json)
             coif::cli::print_json({{"output", o->output},

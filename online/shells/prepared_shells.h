@@ -20,6 +20,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
+
 #include <glm/glm.hpp>
 #include <span>
 #include <utility>
@@ -57,6 +59,15 @@ struct LightingSample {  // shaders/gl/lighting_samples.glsl
     // spread about it, scaled so that the four tilts mean ± a, mean ± b have the fibres' second moment
     // (shaders/lighting/fibre_tangents.glsl). xyz; w unused.
     glm::vec4 tilt_mean{0.0f}, tilt_a{0.0f}, tilt_b{0.0f};
+    // The cross-section's axis of A, e1 = cos θ n + sin θ (t × n) with n the frame normal made ⟂ t (as
+    // lighting_samples.glsl sample_ellipse_axis); zero where the normal runs along the tangent.
+    glm::vec3 ellipse_axis() const {
+        const glm::vec3 t = glm::normalize(glm::vec3(tangent));
+        const glm::vec3 across = glm::vec3(normal) - glm::dot(glm::vec3(normal), t) * t;
+        if (!(glm::length(across) > 1e-6f)) return glm::vec3(0.0f);
+        const glm::vec3 n = glm::normalize(across);
+        return std::cos(normal.w) * n + std::sin(normal.w) * glm::cross(t, n);
+    }
 };
 // One layer mesh inside the shared vertex and index arrays.
 struct MeshRange {

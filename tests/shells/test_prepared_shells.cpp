@@ -130,9 +130,7 @@ TEST(PreparedShells, LightingSamplesCarryTheCrossSectionsEllipse) {
         for (std::size_t r = 0; r < rows; ++r) {
             const LightingSample& q = p.samples[c * rows + r];
             const double t = static_cast<double>(r) / static_cast<double>(rows - 1);
-            const glm::vec3 T = glm::normalize(glm::vec3(q.tangent));
-            const glm::vec3 n = glm::normalize(glm::vec3(q.normal) - glm::dot(glm::vec3(q.normal), T) * T);
-            const glm::vec3 e1 = std::cos(q.normal.w) * n + std::sin(q.normal.w) * glm::cross(T, n);
+            const glm::vec3 e1 = q.ellipse_axis();
             const glm::vec3 want = glm::normalize(turn * glm::vec3(cl.shape->ellipse_axes(t)[0]));
             EXPECT_NEAR(glm::distance(e1, want), 0.0f, 1e-4f) << c << " " << r;
             EXPECT_NEAR(q.position.w, cl.placement.scale * 2.0, 1e-5) << c << " " << r;
