@@ -57,6 +57,7 @@ void add_bench_shadows(CLI::App& root) {
     coif::cli::examples(cmd, "  coif bench shadows --width 360 --height 240\n"
                              "  coif bench shadows --strands ../shared/data/harolongo.data --json");
     cmd->callback([o] {
+        if (!std::isfinite(o->radius)) throw coif::Error::parameter("option --radius", "must be a finite number of scene units");
         std::string label;
         const coif::Strands strands = o->scene.load_strands(&label);
         const coif::Camera camera = o->scene.camera_for(strands);

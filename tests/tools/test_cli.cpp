@@ -676,6 +676,9 @@ TEST(Cli, BenchShadowsSetsTheGridsFibreCountBesideTheTracedGaps) {
     EXPECT_EQ(pixels, j["pixels"].get<int>());
     EXPECT_GE(dense, 3);  // the check covers the hair's inside, not only its fringe
     EXPECT_EQ(run_coif("bench shadows --spp 0").exit_code, 2);
+    const auto nan = run_coif("bench shadows --radius nan");
+    EXPECT_EQ(nan.exit_code, 1);
+    EXPECT_THAT(nan.err, HasSubstr("--radius"));
 }
 
 TEST(Cli, BenchEditTimesAnEditThatKeepsWhatItDidNotChange) {
