@@ -73,7 +73,8 @@ void add_bench_shadows(CLI::App& root) {
         s.seed = o->seed;
         s.progress = !o->json;
         const coif::MarschnerFiber bsdf(coif::shading::default_hair_params());
-        const coif::ReferenceRenderer tracer(strands, coif::ReferenceEnvironment::constant(glm::vec3(1.0f)), bsdf, s);
+        const coif::ReferenceEnvironment sky = coif::ReferenceEnvironment::constant(glm::vec3(1.0f));  // the tracer keeps a reference
+        const coif::ReferenceRenderer tracer(strands, sky, bsdf, s);
         const coif::Image coverage = tracer.render(camera);
 
         const glm::vec3 centre = grid.origin + 0.5f * grid.extent();
