@@ -109,8 +109,11 @@ struct ReferenceStats {
 // An Embree scene of fibres plus the path tracer. Thread-safe for concurrent const calls.
 class ReferenceRenderer {
 public:
+    // Keeps `environment` and `bsdf` by reference: they must outlive the renderer, so temporaries are refused.
     ReferenceRenderer(const Strands& strands, const ReferenceEnvironment& environment, const FiberBsdf& bsdf,
                       const ReferenceSettings& settings);
+    ReferenceRenderer(const Strands&, ReferenceEnvironment&&, const FiberBsdf&, const ReferenceSettings&) = delete;
+    ReferenceRenderer(const Strands&, const ReferenceEnvironment&, FiberBsdf&&, const ReferenceSettings&) = delete;
     ~ReferenceRenderer();
     ReferenceRenderer(const ReferenceRenderer&) = delete;
     ReferenceRenderer& operator=(const ReferenceRenderer&) = delete;
