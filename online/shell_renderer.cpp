@@ -12,6 +12,7 @@
 
 #include "models/core/error.h"
 #include "models/core/log.h"
+#include "models/core/statistics.h"
 #include "models/core/units.h"
 #include "online/body_pass.h"
 #include "online/shell_passes.h"
@@ -203,7 +204,7 @@ ShellRenderer::~ShellRenderer() = default;
 
 OwnClusterDepth ShellRenderer::own_cluster_depth() const {
     const Impl& m = *impl_;
-    std::vector<float> across, alpha;
+    std::vector<double> across, alpha;
     across.reserve(m.shells.samples.size());
     for (const LightingSample& q : m.shells.samples) {
         const glm::vec3 e1 = q.ellipse_axis();
@@ -214,12 +215,8 @@ OwnClusterDepth ShellRenderer::own_cluster_depth() const {
     }
     alpha.reserve(m.shells.sectors.size());
     for (const ShellSector& sector : m.shells.sectors) alpha.push_back(sector.shadow.y);
-    const auto median = [](std::vector<float>& v) {
-        if (v.empty()) return 0.0f;
-        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-        return v[v.size() / 2];
-    };
-    return {median(across), median(alpha)};
+    const auto median_or_zero = [](std::vector<double> v) { return v.empty() ? 0.0f : static_cast<float>(median(std::move(v))); };
+    return {median_or_zero(std::move(across)), median_or_zero(std::move(alpha))};
 }
 
 void ShellRenderer::set_lights(std::span<const SrbfLight> lights) {
