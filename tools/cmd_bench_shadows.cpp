@@ -131,11 +131,13 @@ void add_bench_shadows(CLI::App& root) {
         std::printf("coif bench shadows: %s, %dx%d, %d rays a pixel, fibre radius %g, grid %dx%dx%d of %g\n", label.c_str(),
                     camera.width, camera.height, o->spp, double(r), grid.dims.x, grid.dims.y, grid.dims.z, double(grid.voxel));
         std::printf("  fibres met (grid)   pixels   mean n   exp(-n) (grid)   gaps (traced)   -ln(gaps)/n\n");
-        for (const auto& row : rows) {
-            const std::string to = row["fibres_to"].is_null() ? "" : std::to_string(row["fibres_to"].get<double>()).substr(0, 4);
-            std::printf("  %5.1f .. %-8s  %7d   %6.2f   %14.3f   %13.3f   %11.3f\n", row["fibres_from"].get<double>(), to.c_str(),
-                        row["pixels"].get<int>(), row["mean_fibres"].get<double>(), row["grid_unoccluded"].get<double>(),
-                        row["traced_gaps"].get<double>(), row["effective_share"].get<double>());
+        for (std::size_t k = 0; k < bins.size(); ++k) {
+            const Bin& b = bins[k];
+            if (b.pixels == 0) continue;
+            char to[16] = "";
+            if (k + 2 < kEdges.size()) std::snprintf(to, sizeof to, "%.1f", kEdges[k + 1]);
+            std::printf("  %5.1f .. %-8s  %7d   %6.2f   %14.3f   %13.3f   %11.3f\n", kEdges[k], to, b.pixels, b.fibres / b.pixels,
+                        b.poisson / b.pixels, b.gaps / b.pixels, share(b));
         }
         std::printf("  all hair pixels     %7d            %14.3f   %13.3f\n", all.pixels, all.poisson / all.pixels, all.gaps / all.pixels);
     });
