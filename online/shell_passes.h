@@ -38,9 +38,9 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // RGBA texels per lighting sample: the 27 floats C_k, S_k, V, the own cluster's stretch and the lights lit in 8, then each
-// fibre tangent's lum(C_0), then the fibres' forward loss 1 − ā_f (shaders/gl/shell_lighting.comp; the shaders'
-// LIGHTING_TEXELS).
-inline constexpr int kLightingTexels = 10;
+// fibre tangent's lum(C_0), then the fibres' forward loss 1 − ā_f, then each tangent's lum(C_1), lum(S_1), lum(C_2),
+// lum(S_2) (shaders/gl/shell_lighting.comp; the shaders' LIGHTING_TEXELS).
+inline constexpr int kLightingTexels = 14;
 // The most lights the lighting pass culls per sample (ShellSettings::light_cull): it keeps each light's estimate and
 // the lights kept in arrays of the light count, per sample; with more lights it lights every one.
 inline constexpr int kMaxCulledLights = 128;

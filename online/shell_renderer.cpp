@@ -521,14 +521,16 @@ std::vector<float> ShellRenderer::read_lighting() const {
     return out;
 }
 
-std::vector<glm::vec4> ShellRenderer::read_tangent_luminance() const {
+std::vector<std::array<glm::vec4, 5>> ShellRenderer::read_tangent_harmonics() const {
     const ShellGpu& g = *impl_->gpu;
     const std::vector<float> tex = lighting_texels(g);
-    std::vector<glm::vec4> out(g.clusters * static_cast<std::size_t>(g.lighting_rows));
+    std::vector<std::array<glm::vec4, 5>> out(g.clusters * static_cast<std::size_t>(g.lighting_rows));
+    constexpr int kTexel[5] = {8, 10, 11, 12, 13};  // shaders/gl/shell_lighting.comp
     for (std::size_t c = 0; c < g.clusters; ++c)
         for (int r = 0; r < g.lighting_rows; ++r)
-            for (int q = 0; q < 4; ++q)  // texel 8
-                out[c * g.lighting_rows + r][q] = lighting_float(tex, g, c, static_cast<std::size_t>(r), 32 + q);
+            for (int h = 0; h < 5; ++h)
+                for (int q = 0; q < 4; ++q)
+                    out[c * g.lighting_rows + r][h][q] = lighting_float(tex, g, c, static_cast<std::size_t>(r), 4 * kTexel[h] + q);
     return out;
 }
 

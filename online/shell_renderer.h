@@ -199,8 +199,9 @@ public:
     // (C_0, C_1, S_1, …, C_4, S_4, RGB each) — for tests against the CPU evaluator. The rows the pass did not light
     // (ShellSettings::lighting_step, lod_lighting) hold what they held before.
     std::vector<float> read_lighting() const;
-    // Each fibre tangent's lum(C_0) alone, on C_0's scale, per cluster and lighting row (4 floats; as read_lighting).
-    std::vector<glm::vec4> read_tangent_luminance() const;
+    // Each fibre tangent's sums alone to the second harmonic, in luminance and on C_0's scale, per cluster and lighting
+    // row (as read_lighting): lum(C_0), lum(C_1), lum(S_1), lum(C_2), lum(S_2), each a vec4 of the four tangents.
+    std::vector<std::array<glm::vec4, 5>> read_tangent_harmonics() const;
     // The lights that the lighting pass of the last draw lit at each sample it lit (ShellSettings::light_cull skips
     // some; ShellTimings::lighting_step and the clusters' levels of detail say which samples were lit, shell_passes.h
     // lit_samples): cluster by cluster, along each.

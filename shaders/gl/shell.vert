@@ -36,6 +36,10 @@ out vec4 v_L6;
 out float v_L7;  // texel 7's x: the lights' mean own_cluster_stretch (shell_lighting.comp)
 #if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
 out vec4 v_L8;   // texel 8: each fibre tangent's lum(C_0)
+out vec4 v_L10;  // texels 10..13: each tangent's lum(C_1), lum(S_1), lum(C_2), lum(S_2)
+out vec4 v_L11;
+out vec4 v_L12;
+out vec4 v_L13;
 #endif
 #if defined(SHELL_OWN) && SHELL_OWN == 2
 out vec3 v_L9;   // texel 9: the fibres' forward loss 1 − ā_f
@@ -75,6 +79,10 @@ void main() {
     v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).x;
 #if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
     v_L8 = lighting_fetch(a_texcoord.y, inst.info.y, 8);
+    v_L10 = lighting_fetch(a_texcoord.y, inst.info.y, 10);
+    v_L11 = lighting_fetch(a_texcoord.y, inst.info.y, 11);
+    v_L12 = lighting_fetch(a_texcoord.y, inst.info.y, 12);
+    v_L13 = lighting_fetch(a_texcoord.y, inst.info.y, 13);
 #endif
 #if defined(SHELL_OWN) && SHELL_OWN == 2
     v_L9 = lighting_fetch(a_texcoord.y, inst.info.y, 9).xyz;

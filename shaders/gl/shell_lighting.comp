@@ -16,8 +16,10 @@
 // light, averaged with the weights lum(w_j); the 30th the number of lights lit (all of them unless culled, below);
 // texel 7's last two are 0.
 // Texel 8 holds lum(C_0) of each fibre tangent q alone, (Σ_j w_jq over the four), on C_0's scale (all four lum(C_0)
-// with one tangent): the shells light each strip of a sector as one fibre at one tangent (shell_shade.glsl
-// SHELL_TILT_PICK). Texel 9 holds the fibres' forward loss 1 − ā_f per channel (ā_f: zinke_forward, at the θd whose
+// with one tangent), and texels 10..13 that tangent's first two harmonics in luminance, lum(C_1), lum(S_1), lum(C_2),
+// lum(S_2) (each texel one harmonic, component q the tangent): the shells light each strip of a sector as one fibre at
+// one tangent (shell_shade.glsl SHELL_TILT_PICK), with the share of the light that reaches that tangent at the
+// records' light azimuths. Texel 9 holds the fibres' forward loss 1 − ā_f per channel (ā_f: zinke_forward, at the θd whose
 // 1 / cos is the 29th float, the lights' mean stretch), for the own cluster's forward-scattered light (shell_shade.glsl
 // SHELL_OWN 2). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
 //
@@ -117,6 +119,10 @@ void main() {
     float stand_in = kept_estimate > 0.0 ? estimated / kept_estimate : 1.0;
 #endif
     vec4 tangent_lum = vec4(0.0);  // lum(C_0) of each tangent alone (texel 8)
+    vec4 tangent_c1 = vec4(0.0);   // lum(C_1), lum(S_1), lum(C_2), lum(S_2) of each tangent alone (texels 10..13)
+    vec4 tangent_s1 = vec4(0.0);
+    vec4 tangent_c2 = vec4(0.0);
+    vec4 tangent_s2 = vec4(0.0);
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
         vec3 C0_before = C[0];
         vec3 Tq;
@@ -143,10 +149,24 @@ void main() {
                 C[k] += wj * (d * cos(float(k) * psi));
                 S[k] += wj * (d * sin(float(k) * psi));
             }
+            // This tangent's own harmonics 1 and 2 in luminance, on C_0's scale as texel 8.
+            float lw = float(SHELL_TANGENTS) * dot(wj, vec3(0.2126, 0.7152, 0.0722));
+            float d1 = exp(-0.25 * lp * lp);
+            float d2 = d1 * d1 * d1 * d1;
+            tangent_c1[q] += lw * d1 * cos(psi);
+            tangent_s1[q] += lw * d1 * sin(psi);
+            tangent_c2[q] += lw * d2 * cos(2.0 * psi);
+            tangent_s2[q] += lw * d2 * sin(2.0 * psi);
         }
         tangent_lum[q] = float(SHELL_TANGENTS) * dot(C[0] - C0_before, vec3(0.2126, 0.7152, 0.0722));
     }
-    if (SHELL_TANGENTS == 1) tangent_lum = vec4(tangent_lum.x);
+    if (SHELL_TANGENTS == 1) {
+        tangent_lum = vec4(tangent_lum.x);
+        tangent_c1 = vec4(tangent_c1.x);
+        tangent_s1 = vec4(tangent_s1.x);
+        tangent_c2 = vec4(tangent_c2.x);
+        tangent_s2 = vec4(tangent_s2.x);
+    }
     float v[32];
     v[0] = C[0].x; v[1] = C[0].y; v[2] = C[0].z;
     for (int k = 1; k <= 4; ++k) {
@@ -166,6 +186,10 @@ void main() {
     for (int m = 0; m < 8; ++m)
         imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 8), tangent_lum);
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 10), tangent_c1);
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 11), tangent_s1);
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 12), tangent_c2);
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 13), tangent_s2);
     vec3 a_f = fetch_ms_forward(acos(clamp(1.0 / v[28], 0.0, 1.0)), hp.sigma_a).rgb;
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 9), vec4(vec3(1.0) - a_f, 0.0));
 }

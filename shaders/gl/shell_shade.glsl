@@ -94,6 +94,10 @@ centroid in vec4 v_L6;
 centroid in float v_L7;
 #if SHELL_TILT_PICK == 1
 centroid in vec4 v_L8;
+centroid in vec4 v_L10;
+centroid in vec4 v_L11;
+centroid in vec4 v_L12;
+centroid in vec4 v_L13;
 #endif
 #if SHELL_OWN == 2
 centroid in vec3 v_L9;
@@ -475,14 +479,35 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #endif
     vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
 #if SHELL_TILT_PICK == 1
-    {  // The strip's fibre at its one tangent: the sums scaled by that tangent's share of the light (texel 8).
+    {
+        // The strip's fibre at its one tangent q: the sums scaled by that tangent's share of the light where re takes
+        // it. Each tangent's sums to the second harmonic in luminance (texels 8, 10..13), turned to r as above, against
+        // re's harmonics in luminance, give what reaches each tangent through this fragment's records; the strip takes
+        // tangent q's share of the four's mean. The colour stays the mean's (scaling each channel sprinkled red and blue
+        // where a channel's light is near 0: docs/quality.md "One tangent per strip"); a share below 0 leaves the strip
+        // unlit. Where the four's mean is not well above 0 (re's harmonics cancel the light), the share of C_0 alone
+        // (texel 8).
 #if SHELL_LIGHTING == 1
-        vec4 L8 = v_L8;
+        vec4 L8 = v_L8, L10 = v_L10, L11 = v_L11, L12 = v_L12, L13 = v_L13;
 #else
         vec4 L8 = lighting_fetch(texcoord.y, info.y, 8);
+        vec4 L10 = lighting_fetch(texcoord.y, info.y, 10);
+        vec4 L11 = lighting_fetch(texcoord.y, info.y, 11);
+        vec4 L12 = lighting_fetch(texcoord.y, info.y, 12);
+        vec4 L13 = lighting_fetch(texcoord.y, info.y, 13);
 #endif
-        float mean = dot(C0, vec3(0.2126, 0.7152, 0.0722));
-        sum *= mean > 1e-20 ? max(L8[fibre_strip_tangent(top, x)], 0.0) / mean : 1.0;
+        const vec3 LUM = vec3(0.2126, 0.7152, 0.0722);
+        vec4 reach = dot(h[0], LUM) * L8 + dot(h[1], LUM) * (L10 * e1.x + L11 * e1.y) +
+                     dot(h[2], LUM) * (L11 * e1.x - L10 * e1.y) + dot(h[3], LUM) * (L12 * e2.x + L13 * e2.y) +
+                     dot(h[4], LUM) * (L13 * e2.x - L12 * e2.y);
+        float reach_mean = 0.25 * (reach.x + reach.y + reach.z + reach.w);
+        float reach_abs = 0.25 * (abs(reach.x) + abs(reach.y) + abs(reach.z) + abs(reach.w));
+        int q = fibre_strip_tangent(top, x);
+        float c0_mean = 0.25 * (L8.x + L8.y + L8.z + L8.w);
+        float share = reach_mean > 0.5 * reach_abs && reach_mean > 0.0 ? reach[q] / reach_mean
+                      : c0_mean > 1e-20                              ? max(L8[q], 0.0) / c0_mean
+                                                                     : 1.0;
+        sum *= share;
     }
 #endif
     return vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);

@@ -26,6 +26,7 @@
 
 namespace coif::glsl {
 #include "shaders/lighting/fibre_tangents.glsl"
+#include "shaders/gl/sector_frame.glsl"
 }  // namespace coif::glsl
 
 namespace coif {
@@ -82,11 +83,11 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     settings.shadows = false;  // one cluster; the shadowed case is ShadowsBetweenClusters… below
     renderer.draw(camera, settings);
     const std::vector<float> lit = renderer.read_lighting();
-    const std::vector<glm::vec4> tangent_lum = renderer.read_tangent_luminance();
+    const std::vector<std::array<glm::vec4, 5>> tangent_sums = renderer.read_tangent_harmonics();
     const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
     const int tangents = spread != 0.0f ? 4 : 1;
     double worst = 0;
-    double worst_tangent = 0;  // each tangent's lum(C_0) alone (texel 8), on C_0's scale
+    double worst_tangent = 0;  // each tangent's sums alone in luminance (texels 8, 10..13), on C_0's scale
     for (int r = 0; r < renderer.lighting_rows(); ++r) {
         const std::vector<glm::vec3> s = renderer.lighting_sample(static_cast<std::size_t>(r));
         const glm::vec3 view = glm::normalize(camera.eye - s[0]);
@@ -100,6 +101,11 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
         }
         glm::vec3 want(0.0f);
         float lum_mean = 0.0f;
+        // The light's in-plane azimuth ψ in the axis frame and the damping d_1, d_2 of its spread (shell_light.glsl).
+        const float psi = glsl::sector_azimuth(light.omega, T, r0);
+        const float in_plane = light.lambda / std::max(glm::length(light.omega - glm::dot(light.omega, T) * T), 1e-3f);
+        const float d1 = std::exp(-0.25f * in_plane * in_plane), d2 = std::exp(-in_plane * in_plane);
+        const std::array<glm::vec4, 5>& got_q = tangent_sums[static_cast<std::size_t>(r)];
         for (int q = 0; q < 4; ++q) {
             glm::vec3 Tq, rq;
             glsl::fibre_tangent_of(T, r0, m, a, b, q % tangents, tangents, Tq, rq);
@@ -108,10 +114,13 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
             if (q < tangents) want += one / float(tangents);
             const float lum = glm::dot(one, glm::vec3(0.2126f, 0.7152f, 0.0722f));
             lum_mean += lum / 4.0f;
-            worst_tangent = std::max(worst_tangent, std::abs(double(tangent_lum[r][q]) - lum) / std::max(1e-3, double(lum)));
+            const float want_q[5] = {lum, lum * d1 * std::cos(psi), lum * d1 * std::sin(psi), lum * d2 * std::cos(2.0f * psi),
+                                     lum * d2 * std::sin(2.0f * psi)};
+            for (int h = 0; h < 5; ++h)
+                worst_tangent = std::max(worst_tangent, std::abs(double(got_q[h][q]) - want_q[h]) / std::max(1e-3, double(lum)));
         }
         // The four tangents' mean is C_0's.
-        const glm::vec4 tl = tangent_lum[r];
+        const glm::vec4 tl = got_q[0];
         EXPECT_NEAR((tl.x + tl.y + tl.z + tl.w) / 4.0f, lum_mean, 0.01f * std::max(lum_mean, 1e-3f)) << "row " << r;
         const glm::vec3 got(lit[r * 27 + 0], lit[r * 27 + 1], lit[r * 27 + 2]);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(got[c]) - want[c]) / std::max(1e-3, double(want[c])));
@@ -352,18 +361,26 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
     // With each strip lit at one of the tangents (tilt_per_strip), the per-sample path scales the four tangents' mean by
     // the strip's tangent's share of the light, where the per-fragment path lights that tangent itself: the means agree
     // as before (measured 0.1 % and 1.0 %), a pixel within 5 % on average (measured 3.1 % and 2.5 %).
+    // Under two narrow lights from either side, the tangents' shares differ with the lights' azimuths, where re weighs
+    // them: the per-sample path takes each tangent's share through its own first two harmonics (texels 10..13). A pixel
+    // is within 20 % on average (measured 13 %; 30 % with the share of C_0 alone, as before), the means within 6 %
+    // (measured 3.5 %: the strip keeps the mean's colour; 1.0 % before).
     auto context = gl::Context::headless();
     gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
     for (const bool pick : {false, true})
     for (const float spread : {0.0f, 0.5f})
-    for (const float lambda : {0.1f, 1.0f}) {
+    for (const float lambda : {0.1f, 1.0f})
+    for (const int count : {1, 2}) {
         if (pick && spread == 0.0f) continue;  // one tangent: nothing to pick
+        if (count == 2 && !(pick && lambda < 0.5f)) continue;
         SrbfLight light;
         light.L = glm::vec3(1.0f, 0.8f, 0.6f);
         light.omega = glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
         light.lambda = lambda;
-        const SrbfLight lights[] = {light};
-        renderer.set_lights(lights);
+        SrbfLight behind = light;
+        behind.omega = glm::normalize(glm::vec3(-0.7f, 0.2f, -0.6f));
+        const SrbfLight lights[] = {light, behind};
+        renderer.set_lights(std::span(lights, static_cast<std::size_t>(count)));
         const Camera camera = front_camera(renderer, 96, 160);
         gl::ShellSettings s;
         s.lighting_step = 1;  // every sample lit: the two paths compared at the same samples
@@ -382,12 +399,13 @@ TEST(ShellRenderer, PerFragmentLightingAgreesWithTheLightingSamplesOnAStraightCl
                 mean_f += fragments.pixels[i];
                 diff += std::abs(samples.pixels[i] - fragments.pixels[i]);
             }
-        std::printf("tilt per strip %d, spread %.1f, λ %.1f: per-sample mean %.4g, per-fragment mean %.4g, mean |Δ| %.3g of "
-                    "the mean\n", pick, spread, lambda, mean_s, mean_f, diff / std::max(mean_f, 1e-12));
+        std::printf("tilt per strip %d, spread %.1f, λ %.1f, %d light(s): per-sample mean %.4g, per-fragment mean %.4g, mean "
+                    "|Δ| %.3g of the mean\n", pick, spread, lambda, count, mean_s, mean_f, diff / std::max(mean_f, 1e-12));
         ASSERT_GT(mean_f, 0.0);
         const double bound = lambda < 0.5f ? 0.06 : 0.01;
         EXPECT_NEAR(mean_s / mean_f, 1.0, bound) << "spread " << spread << ", λ " << lambda << ", pick " << pick;
-        EXPECT_LT(diff, (pick ? 0.05 : bound) * mean_f) << "spread " << spread << ", λ " << lambda << ", pick " << pick;
+        EXPECT_LT(diff, (pick ? (count == 2 ? 0.2 : 0.05) : bound) * mean_f)
+            << "spread " << spread << ", λ " << lambda << ", pick " << pick << ", lights " << count;
     }
 }
 
