@@ -144,19 +144,22 @@ void main() {
             float lum = max(dot(wj, vec3(0.2126, 0.7152, 0.0722)), 0.0);
             own_weight += lum * own_cluster_stretch(normalize(l), T);
             own_norm += lum;
+            // This tangent's own harmonics 1 and 2 in luminance too, on C_0's scale as texel 8.
+            float lw = float(SHELL_TANGENTS) * dot(wj, vec3(0.2126, 0.7152, 0.0722));
             for (int k = 1; k <= 4; ++k) {
                 float d = exp(-float(k * k) * lp * lp * 0.25);
-                C[k] += wj * (d * cos(float(k) * psi));
-                S[k] += wj * (d * sin(float(k) * psi));
+                float ck = d * cos(float(k) * psi);
+                float sk = d * sin(float(k) * psi);
+                C[k] += wj * ck;
+                S[k] += wj * sk;
+                if (k == 1) {
+                    tangent_c1[q] += lw * ck;
+                    tangent_s1[q] += lw * sk;
+                } else if (k == 2) {
+                    tangent_c2[q] += lw * ck;
+                    tangent_s2[q] += lw * sk;
+                }
             }
-            // This tangent's own harmonics 1 and 2 in luminance, on C_0's scale as texel 8.
-            float lw = float(SHELL_TANGENTS) * dot(wj, vec3(0.2126, 0.7152, 0.0722));
-            float d1 = exp(-0.25 * lp * lp);
-            float d2 = d1 * d1 * d1 * d1;
-            tangent_c1[q] += lw * d1 * cos(psi);
-            tangent_s1[q] += lw * d1 * sin(psi);
-            tangent_c2[q] += lw * d2 * cos(2.0 * psi);
-            tangent_s2[q] += lw * d2 * sin(2.0 * psi);
         }
         tangent_lum[q] = float(SHELL_TANGENTS) * dot(C[0] - C0_before, vec3(0.2126, 0.7152, 0.0722));
     }
