@@ -27,6 +27,10 @@
 #include <glm/glm.hpp>
 
 #include "models/core/image.h"
+#include "shaders/glsl_prelude.h"
+namespace coif::glsl {
+#include "shaders/lighting/common.glsl"
+}
 
 namespace coif {
 
@@ -38,9 +42,9 @@ inline constexpr double kNegativeTolerance = 0.05;
 // Smallest map accepted (8 × 4): below that a pixel spans more than 45° and nothing can be fitted.
 inline constexpr int kMinEnvMapWidth = 8;
 
-// Rec. 709 / sRGB luminance weights (linear RGB).
-inline double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
-inline float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+// Rec. 709 / sRGB luminance of linear RGB, with the shaders' weights (shaders/lighting/common.glsl).
+inline double luminance(const glm::dvec3& c) { return glm::dot(c, glm::dvec3(glsl::COIF_LUMINANCE)); }
+inline float luminance(const glm::vec3& c) { return glsl::luminance(c); }
 
 struct EnvMap {
     int width = 0;                     // = 2 × height

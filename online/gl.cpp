@@ -5,9 +5,9 @@
 #include <chrono>
 #include <cstdio>
 #include <initializer_list>
-#include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "models/core/error.h"
 #include "online/shader_files.h"
@@ -158,8 +158,16 @@ std::string shader_text(const std::string& path) {
 
 namespace {
 
-void expand_includes(const std::string& path, std::set<std::string>& seen, std::ostringstream& out, int depth) {
-    if (depth > 16) throw Error(path, "", "#include nesting deeper than 16 (a cycle?)");
+// Writes `path` to `out` with its #include lines replaced by the files they name, recursively. A file is written at
+// every #include of it: each shader file is include-guarded (shaders/glsl_prelude.h), so GLSL's preprocessor keeps the
+// first copy that a program's defines compile in. (Writing a file only at its first #include lost it from a variant
+// whose first #include of it sits in an #if that is off there, such as own_cluster.glsl's includes under SHELL_OWN 0.)
+// `stack` holds the files being expanded, to refuse a cycle.
+void expand_includes(const std::string& path, std::vector<std::string>& stack, std::ostringstream& out) {
+    if (std::find(stack.begin(), stack.end(), path) != stack.end())
+        throw Error(path, "", "#include cycle: " + stack.back() + " includes " + path + ", which includes it");
+    if (stack.size() > 16) throw Error(path, "", "#include nesting deeper than 16");
+    stack.push_back(path);
     std::istringstream in(shader_text(path));
     std::string line;
     int number = 0;
@@ -169,13 +177,13 @@ void expand_includes(const std::string& path, std::set<std::string>& seen, std::
         if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
             const auto a = line.find('"'), b = line.rfind('"');
             if (a == std::string::npos || b <= a) throw Error(path, "line " + std::to_string(number), "malformed #include");
-            const std::string inc = line.substr(a + 1, b - a - 1);
-            if (seen.insert(inc).second) expand_includes(inc, seen, out, depth + 1);
+            expand_includes(line.substr(a + 1, b - a - 1), stack, out);
             out << "\n";
             continue;
         }
         out << line << "\n";
     }
+    stack.pop_back();
 }
 
 GLuint compile(const std::string& path, const std::vector<std::string>& defines) {
@@ -187,9 +195,9 @@ GLuint compile(const std::string& path, const std::vector<std::string>& defines)
     std::ostringstream src;
     src << "#version 450 core\n";
     for (const auto& d : defines) src << "#define " << d << "\n";
-    std::set<std::string> seen{"shaders/gl/prelude.glsl", path};
-    expand_includes("shaders/gl/prelude.glsl", seen, src, 0);
-    expand_includes(path, seen, src, 0);
+    std::vector<std::string> stack;
+    expand_includes("shaders/gl/prelude.glsl", stack, src);
+    expand_includes(path, stack, src);
     const std::string text = src.str();
     const char* ptr = text.c_str();
     const GLuint shader = glCreateShader(stage);

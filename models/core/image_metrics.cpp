@@ -8,6 +8,10 @@
 
 #include "models/core/error.h"
 #include "models/core/units.h"
+#include "shaders/glsl_prelude.h"
+namespace coif::glsl {
+#include "shaders/lighting/common.glsl"
+}
 
 namespace coif {
 namespace {
@@ -194,7 +198,9 @@ double aces_inverse(double t) {
     return -0.5 * c0 + std::sqrt(0.25 * c0 * c0 - c1);
 }
 
-double luminance709(const Planes& p, size_t i) { return 0.2126 * p.c[0][i] + 0.7152 * p.c[1][i] + 0.0722 * p.c[2][i]; }
+double luminance709(const Planes& p, size_t i) {
+    return glm::dot(glm::dvec3(glsl::COIF_LUMINANCE), glm::dvec3(p.c[0][i], p.c[1][i], p.c[2][i]));
+}
 
 bool has_informative_alpha(const Image& image) {
     if (image.channels < 4) return false;

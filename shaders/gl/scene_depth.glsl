@@ -7,6 +7,8 @@
 // The fragment's own depth is gl_FragCoord.z from the host's projection, depth range and clip control, so it is
 // comparable with what the host's depth buffer holds. u_scene_depth_offset: the texel of the scene's depth under
 // this draw's pixel (0, 0) (the viewport's origin when the shells are drawn into a frame of the viewport's size).
+#ifndef COIF_SHADERS_GL_SCENE_DEPTH_GLSL
+#define COIF_SHADERS_GL_SCENE_DEPTH_GLSL
 #ifndef SHELL_SCENE_DEPTH
 #define SHELL_SCENE_DEPTH 0
 #endif
@@ -24,3 +26,5 @@ bool behind_scene() {
 #else
 bool behind_scene() { return false; }
 #endif
+
+#endif  // COIF_SHADERS_GL_SCENE_DEPTH_GLSL

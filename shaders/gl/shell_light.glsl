@@ -6,6 +6,7 @@
 #ifndef COIF_SHADERS_GL_SHELL_LIGHT_GLSL
 #define COIF_SHADERS_GL_SHELL_LIGHT_GLSL
 
+#include "shaders/lighting/common.glsl"  // luminance
 #include "shaders/gl/srbf_lights.glsl"
 #include "shaders/gl/sector_frame.glsl"
 #include "shaders/lighting/fibre_tangents.glsl"
@@ -18,7 +19,7 @@ uniform sampler2D u_absorption;  // σa per lighting sample: texel (row, cluster
 uniform float u_d_f;     // Zinke's forward density factor d_f
 
 // The luminance of light j's radiance L_j (Rec. 709 weights, as the shadow AOV's).
-float light_luminance(int j) { return dot(lights[j].radiance.rgb, vec3(0.2126, 0.7152, 0.0722)); }
+float light_luminance(int j) { return luminance(lights[j].radiance.rgb); }
 
 // Light j's shadow (T̃, n) at lighting sample i: the shadow pass's, or unoccluded (1, 0) with shadows off.
 vec2 sample_shadow(int i, int j) { return u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0); }

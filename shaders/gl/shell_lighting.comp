@@ -141,11 +141,11 @@ void main() {
             float psi = sector_azimuth(l, T, r0);
             float lp = shell_light_spread(j, T);
             C[0] += wj;
-            float lum = max(dot(wj, vec3(0.2126, 0.7152, 0.0722)), 0.0);
+            float lum = max(luminance(wj), 0.0);
             own_weight += lum * own_cluster_stretch(normalize(l), T);
             own_norm += lum;
             // This tangent's own harmonics 1 and 2 in luminance too, on C_0's scale as texel 8.
-            float lw = float(SHELL_TANGENTS) * dot(wj, vec3(0.2126, 0.7152, 0.0722));
+            float lw = float(SHELL_TANGENTS) * luminance(wj);
             for (int k = 1; k <= 4; ++k) {
                 float d = exp(-float(k * k) * lp * lp * 0.25);
                 float ck = d * cos(float(k) * psi);
@@ -161,7 +161,7 @@ void main() {
                 }
             }
         }
-        tangent_lum[q] = float(SHELL_TANGENTS) * dot(C[0] - C0_before, vec3(0.2126, 0.7152, 0.0722));
+        tangent_lum[q] = float(SHELL_TANGENTS) * luminance(C[0] - C0_before);
     }
     if (SHELL_TANGENTS == 1) {
         tangent_lum = vec4(tangent_lum.x);

@@ -43,6 +43,7 @@
 #ifndef COIF_SHADERS_GL_SHELL_SHADE_GLSL
 #define COIF_SHADERS_GL_SHELL_SHADE_GLSL
 
+#include "shaders/lighting/common.glsl"  // luminance
 #include "shaders/gl/sector_frame.glsl"
 #include "shaders/gl/record_atlas.glsl"
 
@@ -496,10 +497,9 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         vec4 L12 = lighting_fetch(texcoord.y, info.y, 12);
         vec4 L13 = lighting_fetch(texcoord.y, info.y, 13);
 #endif
-        const vec3 LUM = vec3(0.2126, 0.7152, 0.0722);
-        vec4 reach = dot(h[0], LUM) * L8 + dot(h[1], LUM) * (L10 * e1.x + L11 * e1.y) +
-                     dot(h[2], LUM) * (L11 * e1.x - L10 * e1.y) + dot(h[3], LUM) * (L12 * e2.x + L13 * e2.y) +
-                     dot(h[4], LUM) * (L13 * e2.x - L12 * e2.y);
+        vec4 reach = luminance(h[0]) * L8 + luminance(h[1]) * (L10 * e1.x + L11 * e1.y) +
+                     luminance(h[2]) * (L11 * e1.x - L10 * e1.y) + luminance(h[3]) * (L12 * e2.x + L13 * e2.y) +
+                     luminance(h[4]) * (L13 * e2.x - L12 * e2.y);
         float reach_mean = 0.25 * (reach.x + reach.y + reach.z + reach.w);
         float reach_abs = 0.25 * (abs(reach.x) + abs(reach.y) + abs(reach.z) + abs(reach.w));
         int q = fibre_strip_tangent(top, x);

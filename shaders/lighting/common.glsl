@@ -19,6 +19,11 @@ const float COIF_HALF_PI = 1.57079632679490;
 const float COIF_SQRT_PI = 1.77245385090552;
 const float COIF_INV_PI = 0.318309886183791;
 
+// Rec. 709 / sRGB luminance of linear RGB: coif's one set of weights, for the shaders and for C++
+// (offline/envmap.h, the image metrics).
+const vec3 COIF_LUMINANCE = vec3(0.2126, 0.7152, 0.0722);
+COIF_FN float luminance(vec3 c) { return dot(c, COIF_LUMINANCE); }
+
 // x wrapped to [-π, π).
 COIF_FN float wrap_pi(float x) {
     return x - COIF_TWO_PI * floor((x + COIF_PI) / COIF_TWO_PI);

@@ -17,8 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     coif::Image image(width, height, channels);
     const std::size_t floats = std::min(image.pixels.size(), (size - 4) / sizeof(float));
     std::memcpy(image.pixels.data(), data + 4, floats * sizeof(float));
-    const std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("coif-fuzz-image-" + std::to_string(::getpid()) + extension);
+    const std::filesystem::path path = coif::fuzz::scratch_file("coif-fuzz-image-", extension);
     coif::WriteOptions wo;
     wo.full_float = true;
     try {

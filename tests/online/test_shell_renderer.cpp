@@ -112,7 +112,7 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
             const glm::vec3 one =
                 ev.shade(shading::FibreFrame::from_tangent(Tq, rq), view, std::span(&light, 1), {}, multiple).total();
             if (q < tangents) want += one / float(tangents);
-            const float lum = glm::dot(one, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+            const float lum = glsl::luminance(one);
             lum_mean += lum / 4.0f;
             const float want_q[5] = {lum, lum * d1 * std::cos(psi), lum * d1 * std::sin(psi), lum * d2 * std::cos(2.0f * psi),
                                      lum * d2 * std::sin(2.0f * psi)};
@@ -453,6 +453,54 @@ TEST(ShellRenderer, DatabaseOfAnotherFourierOrderRendersAsTheTruncatedSeries) {
     EXPECT_EQ(diff4, 0.0);
 }
 
+// Every shading program that ShellSettings can ask for compiles and draws hair. Each switch of the shading is a
+// compile-time variant (shaders/gl/shell_shade.glsl), so a combination that no other test draws can fail to compile:
+// `lighting_per_fragment` with `own_cluster_shadow` off did, because the program's text held each included file only at
+// its first #include, which sat in an #if that variant turns off (online/gl.cpp expand_includes). Every combination of
+// the own cluster's shadow (off, on, on with its forward light), the lighting's rate and the compositing is drawn; the
+// other switches (records per sector, re's harmonics, the strip's tangent and sector, the debug views, the tangents'
+// spread) take each of their values along the way.
+TEST(ShellRenderer, EveryCombinationOfTheShadingSwitchesCompilesAndDrawsHair) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer, 48, 32);
+    int drawn = 0;
+    for (const int own : {0, 1, 2})
+        for (const bool per_fragment : {false, true})
+            for (const gl::Compositing mode : {gl::Compositing::sorted, gl::Compositing::unsorted, gl::Compositing::exact,
+                                               gl::Compositing::weighted, gl::Compositing::kbuffer}) {
+                gl::ShellSettings s;
+                s.samples = 1;
+                s.background = glm::vec3(0.0f);
+                s.own_cluster_shadow = own != 0;
+                s.own_cluster_forward = own == 2;
+                s.lighting_per_fragment = per_fragment;
+                s.compositing = mode;
+                s.neighbours = 1 + drawn % 4;
+                s.fourier_order = drawn % 5;
+                s.tilt_per_strip = drawn % 2 == 0;
+                s.sector_per_strip = drawn % 3 != 0;
+                s.debug = drawn % 6 == 5 ? 1 + (drawn / 6) % 4 : 0;  // shaded most often, each debug view once or twice
+                s.tangent_spread = drawn % 6 == 5 ? 0.0f : -1.0f;
+                const std::string what = "own " + std::to_string(own) + ", per fragment " + std::to_string(per_fragment) +
+                                         ", " + gl::compositing_name(mode) + ", neighbours " + std::to_string(s.neighbours) +
+                                         ", Fourier order " + std::to_string(s.fourier_order) + ", debug " + std::to_string(s.debug);
+                Image image;
+                ASSERT_NO_THROW(image = renderer.render(camera, s)) << what;
+                double alpha = 0.0;
+                bool finite = true;
+                for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+                    finite = finite && std::isfinite(image.pixels[i]);
+                    if (i % 4 == 3) alpha += image.pixels[i];
+                }
+                EXPECT_TRUE(finite) << what;
+                EXPECT_GT(alpha, 1.0) << what << ": no hair drawn";
+                ++drawn;
+            }
+    EXPECT_EQ(drawn, 30);
+}
+
 TEST(ShellRenderer, RenderingIsDeterministic) {
     auto context = gl::Context::headless();
     gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
@@ -623,7 +671,7 @@ TEST(ShellRenderer, LightCullSkipsTheDimLightsOfEachSampleAndScalesTheKeptOnes) 
     }
     all.insert(all.end(), two.begin(), two.end());
     const auto estimate = [](const SrbfLight& l) {
-        return std::abs(glm::dot(l.L, glm::vec3(0.2126f, 0.7152f, 0.0722f))) * glsl::srbf_integral(l.lambda);
+        return std::abs(glsl::luminance(l.L)) * glsl::srbf_integral(l.lambda);
     };
     double whole = 0, kept = 0;
     for (const SrbfLight& l : all) whole += estimate(l);
