@@ -516,6 +516,18 @@ glm::vec4 ReferenceRenderer::trace(const glm::vec3& origin, const glm::vec3& dir
     return hits ? glm::vec4(glm::vec3(sum / double(hits)), float(hits) / float(paths)) : glm::vec4(0.0f);
 }
 
+ReferenceRenderer::LitHit ReferenceRenderer::first_fibre_lit(const glm::vec3& origin, const glm::vec3& direction,
+                                                              const glm::vec3& light) const {
+    const Tracer tracer = make_tracer(impl_->scene, segment_strand_, segment_tangent_, env_, bsdf_, settings_);
+    const Hit h = tracer.intersect(origin, glm::normalize(direction), RTC_INVALID_GEOMETRY_ID);
+    LitHit out;
+    if (!h.found) return out;
+    out.found = true;
+    out.position = h.position;
+    out.lit = !tracer.occluded(h.position, glm::normalize(light), h.segment);
+    return out;
+}
+
 Image ReferenceRenderer::render(const Camera& camera, ReferenceStats* stats) const {
     if (camera.width < 1 || camera.height < 1 || camera.width > kMaxImageSide || camera.height > kMaxImageSide)
         throw Error::parameter("camera", "image size " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +

@@ -124,6 +124,16 @@ public:
     // of paths that hit a fibre. For tests of an isolated fibre.
     glm::vec4 trace(const glm::vec3& origin, const glm::vec3& direction, int paths, std::uint64_t seed) const;
 
+    // The first fibre along a ray, and whether a ray from it toward the unit direction `light` leaves the hair (the
+    // fibre's own neighbouring segments skipped, as the tracer's shadow rays skip them). For measuring the direct light
+    // that reaches the fibres a camera sees (coif bench shadows --light).
+    struct LitHit {
+        bool found = false;
+        glm::vec3 position{0.0f};
+        bool lit = false;
+    };
+    LitHit first_fibre_lit(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& light) const;
+
     float fiber_radius() const { return radius_; }
     std::size_t segment_count() const { return segment_strand_.size(); }
     double build_seconds() const { return build_seconds_; }

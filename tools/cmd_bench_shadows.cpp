@@ -10,8 +10,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "models/core/error.h"
+#include "models/core/random.h"
 #include "models/core/image.h"
 #include "offline/reference.h"
 #include "offline/reference_fiber.h"
@@ -27,6 +29,7 @@ struct BenchShadowsOptions {
     int spp = 64;
     float radius = 0.0f;
     std::uint64_t seed = 1;
+    std::vector<float> light;  // empty: along the camera rays; else the direction toward a light
     bool json = false;
 };
 
@@ -53,9 +56,15 @@ void add_bench_shadows(CLI::App& root) {
     cmd->add_option("--radius", o->radius, "Fibre radius in scene units (0 = auto, as coif reference: 1e-3 of the strands' bounding-box diagonal)")
         ->check(CLI::Range(0.0f, 1e6f));
     cmd->add_option("--seed", o->seed, "Random seed of the traced rays");
+    cmd->add_option("--light", o->light,
+                    "X Y Z: toward a light instead. At the first fibre of each of a pixel's rays (what the camera sees),\n"
+                    "exp(-n) of the grid's count along the light's direction from that fibre beside whether a traced ray\n"
+                    "from it toward the light leaves the hair, by bins of n")
+        ->expected(3);
     coif::cli::add_json_flag(cmd, o->json);
     coif::cli::examples(cmd, "  coif bench shadows --width 360 --height 240\n"
-                             "  coif bench shadows --strands ../shared/data/harolongo.data --json");
+                             "  coif bench shadows --strands ../shared/data/harolongo.data --json\n"
+                             "  coif bench shadows --light -1 0 0 --width 180 --height 120 --spp 16");
     cmd->callback([o] {
         if (!std::isfinite(o->radius)) throw coif::Error::parameter("option --radius", "must be a finite number of scene units");
         std::string label;
@@ -75,12 +84,41 @@ void add_bench_shadows(CLI::App& root) {
         const coif::MarschnerFiber bsdf(coif::shading::default_hair_params());
         const coif::ReferenceEnvironment sky = coif::ReferenceEnvironment::constant(glm::vec3(1.0f));  // the tracer keeps a reference
         const coif::ReferenceRenderer tracer(strands, sky, bsdf, s);
-        const coif::Image coverage = tracer.render(camera);
+        coif::Image coverage;
+        if (o->light.empty()) coverage = tracer.render(camera);
 
         const glm::vec3 centre = grid.origin + 0.5f * grid.extent();
         const float reach = glm::length(camera.eye - centre) + glm::length(grid.extent());
         std::array<Bin, kEdges.size() - 1> bins{};
         Bin all;
+        glm::vec3 light(0.0f);
+        if (!o->light.empty()) {
+            light = glm::vec3(o->light[0], o->light[1], o->light[2]);
+            if (!std::isfinite(glm::dot(light, light)) || glm::length(light) < 1e-6f)
+                throw coif::Error::parameter("option --light", "must be a finite, non-zero direction X Y Z");
+            light = glm::normalize(light);
+            // Every fibre point the camera sees counts once (a "pixel" of the table is one such point): the grid's
+            // count toward the light from it, and whether the traced ray from it toward the light leaves the hair.
+            for (int y = 0; y < camera.height; ++y)
+                for (int x = 0; x < camera.width; ++x) {
+                    coif::Pcg32 rng(o->seed, static_cast<std::uint64_t>(y) * camera.width + x);
+                    for (int k = 0; k < o->spp; ++k) {
+                        glm::vec3 origin, dir;
+                        camera.ray(x + rng.uniform(), y + rng.uniform(), origin, dir);
+                        const auto hit = tracer.first_fibre_lit(origin, dir, light);
+                        if (!hit.found) continue;
+                        const double n = 2.0 * r * grid.integrate(hit.position, light, reach, 0.5f * grid.voxel);
+                        std::size_t b = 0;
+                        while (n >= kEdges[b + 1]) ++b;
+                        for (Bin* bin : {&bins[b], &all}) {
+                            ++bin->pixels;
+                            bin->fibres += n;
+                            bin->poisson += std::exp(-n);
+                            bin->gaps += hit.lit ? 1.0 : 0.0;
+                        }
+                    }
+                }
+        } else
         for (int y = 0; y < camera.height; ++y)
             for (int x = 0; x < camera.width; ++x) {
                 glm::vec3 origin, dir;
@@ -98,6 +136,7 @@ void add_bench_shadows(CLI::App& root) {
                 }
             }
         if (all.pixels == 0) throw coif::Error::parameter("camera", "no pixel sees the hair");
+        const bool toward_light = !o->light.empty();
         const auto share = [](const Bin& b) {
             const double gaps = b.gaps / b.pixels, fibres = b.fibres / b.pixels;
             return gaps > 0 && fibres > 0 ? -std::log(gaps) / fibres : 0.0;
@@ -108,7 +147,7 @@ void add_bench_shadows(CLI::App& root) {
             if (b.pixels == 0) continue;
             rows.push_back({{"fibres_from", kEdges[k]},
                             {"fibres_to", k + 2 < kEdges.size() ? nlohmann::json(kEdges[k + 1]) : nlohmann::json(nullptr)},
-                            {"pixels", b.pixels},
+                            {toward_light ? "points" : "pixels", b.pixels},
                             {"mean_fibres", b.fibres / b.pixels},
                             {"grid_unoccluded", b.poisson / b.pixels},
                             {"traced_gaps", b.gaps / b.pixels},
@@ -122,7 +161,8 @@ void add_bench_shadows(CLI::App& root) {
                                    {"fiber_radius", r},
                                    {"grid", {grid.dims.x, grid.dims.y, grid.dims.z}},
                                    {"voxel", grid.voxel},
-                                   {"pixels", all.pixels},
+                                   {"light", toward_light ? nlohmann::json{light.x, light.y, light.z} : nlohmann::json(nullptr)},
+                                   {toward_light ? "points" : "pixels", all.pixels},
                                    {"grid_unoccluded", all.poisson / all.pixels},
                                    {"traced_gaps", all.gaps / all.pixels},
                                    {"bins", rows}});
@@ -130,7 +170,11 @@ void add_bench_shadows(CLI::App& root) {
         }
         std::printf("coif bench shadows: %s, %dx%d, %d rays a pixel, fibre radius %g, grid %dx%dx%d of %g\n", label.c_str(),
                     camera.width, camera.height, o->spp, double(r), grid.dims.x, grid.dims.y, grid.dims.z, double(grid.voxel));
-        std::printf("  fibres met (grid)   pixels   mean n   exp(-n) (grid)   gaps (traced)   -ln(gaps)/n\n");
+        if (toward_light)
+            std::printf("  toward the light (%.3f, %.3f, %.3f) from the fibres the camera sees: each row counts fibre points,\n"
+                        "  'gaps (traced)' is the share of them whose ray to the light leaves the hair\n",
+                        double(light.x), double(light.y), double(light.z));
+        std::printf("  fibres met (grid)   %s   mean n   exp(-n) (grid)   gaps (traced)   -ln(gaps)/n\n", toward_light ? "points" : "pixels");
         for (std::size_t k = 0; k < bins.size(); ++k) {
             const Bin& b = bins[k];
             if (b.pixels == 0) continue;
@@ -139,7 +183,8 @@ void add_bench_shadows(CLI::App& root) {
             std::printf("  %5.1f .. %-8s  %7d   %6.2f   %14.3f   %13.3f   %11.3f\n", kEdges[k], to, b.pixels, b.fibres / b.pixels,
                         b.poisson / b.pixels, b.gaps / b.pixels, share(b));
         }
-        std::printf("  all hair pixels     %7d            %14.3f   %13.3f\n", all.pixels, all.poisson / all.pixels, all.gaps / all.pixels);
+        std::printf("  all hair %s     %7d   %6.2f   %14.3f   %13.3f   %11.3f\n", toward_light ? "points" : "pixels", all.pixels,
+                    all.fibres / all.pixels, all.poisson / all.pixels, all.gaps / all.pixels, share(all));
     });
 }
 
