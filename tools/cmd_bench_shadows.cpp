@@ -91,6 +91,17 @@ void add_bench_shadows(CLI::App& root) {
         const float reach = glm::length(camera.eye - centre) + glm::length(grid.extent());
         std::array<Bin, kEdges.size() - 1> bins{};
         Bin all;
+        // One measurement into its bin of n and into `all`: n the grid's fibres met, `gap` the traced share let through.
+        const auto add = [&](double n, double gap) {
+            std::size_t k = 0;
+            while (n >= kEdges[k + 1]) ++k;
+            for (Bin* b : {&bins[k], &all}) {
+                ++b->pixels;
+                b->fibres += n;
+                b->poisson += std::exp(-n);
+                b->gaps += gap;
+            }
+        };
         glm::vec3 light(0.0f);
         if (!o->light.empty()) {
             light = glm::vec3(o->light[0], o->light[1], o->light[2]);
@@ -107,34 +118,20 @@ void add_bench_shadows(CLI::App& root) {
                         camera.ray(x + rng.uniform(), y + rng.uniform(), origin, dir);
                         const auto hit = tracer.first_fibre_lit(origin, dir, light);
                         if (!hit.found) continue;
-                        const double n = 2.0 * r * grid.integrate(hit.position, light, reach, 0.5f * grid.voxel);
-                        std::size_t b = 0;
-                        while (n >= kEdges[b + 1]) ++b;
-                        for (Bin* bin : {&bins[b], &all}) {
-                            ++bin->pixels;
-                            bin->fibres += n;
-                            bin->poisson += std::exp(-n);
-                            bin->gaps += hit.lit ? 1.0 : 0.0;
-                        }
+                        add(2.0 * r * grid.integrate(hit.position, light, reach, 0.5f * grid.voxel), hit.lit ? 1.0 : 0.0);
                     }
                 }
-        } else
-        for (int y = 0; y < camera.height; ++y)
-            for (int x = 0; x < camera.width; ++x) {
-                glm::vec3 origin, dir;
-                camera.ray(x + 0.5f, y + 0.5f, origin, dir);
-                const double n = 2.0 * r * grid.integrate(origin, glm::normalize(dir), reach, 0.5f * grid.voxel);
-                const double hit = coverage.at(x, y)[3];
-                if (n < 0.01 && hit < 0.01) continue;  // no hair in either
-                std::size_t k = 0;
-                while (n >= kEdges[k + 1]) ++k;
-                for (Bin* b : {&bins[k], &all}) {
-                    ++b->pixels;
-                    b->fibres += n;
-                    b->poisson += std::exp(-n);
-                    b->gaps += 1.0 - hit;
+        } else {
+            for (int y = 0; y < camera.height; ++y)
+                for (int x = 0; x < camera.width; ++x) {
+                    glm::vec3 origin, dir;
+                    camera.ray(x + 0.5f, y + 0.5f, origin, dir);
+                    const double n = 2.0 * r * grid.integrate(origin, glm::normalize(dir), reach, 0.5f * grid.voxel);
+                    const double hit = coverage.at(x, y)[3];
+                    if (n < 0.01 && hit < 0.01) continue;  // no hair in either
+                    add(n, 1.0 - hit);
                 }
-            }
+        }
         if (all.pixels == 0) throw coif::Error::parameter("camera", "no pixel sees the hair");
         const bool toward_light = !o->light.empty();
         const auto share = [](const Bin& b) {
