@@ -20,7 +20,8 @@ using test::run_coif;
 // What this checks today is the lighting at the shells' axes: single scattering, no shadows in either renderer,
 // and the shells' `debug` 3 (the lighting C₀ · α, without the records' re). That is the part that the fibres'
 // measured tilts made right; the full model (re, shadows, multiple scattering) still departs from the reference
-// under single lights (54 of 78 channel ratios in the band, docs/quality.md), and issue 16 stays open for it.
+// under single lights (45 of 78 channel ratios in the band with full meshes, 54 with the level of detail at this size;
+// docs/quality.md, "The shadows from the fibres the camera sees"), and issue 16 stays open for it.
 //
 // Tolerances. The issue's band is [0.8, 1.25] per channel. Measured: 73 of the 78 channel ratios in it, all in
 // 0.82–1.37 (the worst, 1.37, for a light from −x); measured again later, 72 in 0.800–1.352. The test asks for at
