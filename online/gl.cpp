@@ -164,8 +164,11 @@ namespace {
 // whose first #include of it sits in an #if that is off there, such as own_cluster.glsl's includes under SHELL_OWN 0.)
 // `stack` holds the files being expanded, to refuse a cycle.
 void expand_includes(const std::string& path, std::vector<std::string>& stack, std::ostringstream& out) {
-    if (std::find(stack.begin(), stack.end(), path) != stack.end())
-        throw Error(path, "", "#include cycle: " + stack.back() + " includes " + path + ", which includes it");
+    if (std::find(stack.begin(), stack.end(), path) != stack.end()) {
+        std::string chain;
+        for (const std::string& f : stack) chain += f + " -> ";
+        throw Error(path, "", "#include cycle: " + chain + path);
+    }
     if (stack.size() > 16) throw Error(path, "", "#include nesting deeper than 16");
     stack.push_back(path);
     std::istringstream in(shader_text(path));
