@@ -27,10 +27,7 @@
 #include <glm/glm.hpp>
 
 #include "models/core/image.h"
-#include "shaders/glsl_prelude.h"
-namespace coif::glsl {
-#include "shaders/lighting/common.glsl"
-}
+#include "shaders/common.h"
 
 namespace coif {
 

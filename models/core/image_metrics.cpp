@@ -8,10 +8,7 @@
 
 #include "models/core/error.h"
 #include "models/core/units.h"
-#include "shaders/glsl_prelude.h"
-namespace coif::glsl {
-#include "shaders/lighting/common.glsl"
-}
+#include "shaders/common.h"
 
 namespace coif {
 namespace {
