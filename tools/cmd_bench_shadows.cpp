@@ -84,8 +84,9 @@ void add_bench_shadows(CLI::App& root) {
         const coif::MarschnerFiber bsdf(coif::shading::default_hair_params());
         const coif::ReferenceEnvironment sky = coif::ReferenceEnvironment::constant(glm::vec3(1.0f));  // the tracer keeps a reference
         const coif::ReferenceRenderer tracer(strands, sky, bsdf, s);
+        const bool toward_light = !o->light.empty();
         coif::Image coverage;
-        if (o->light.empty()) coverage = tracer.render(camera);
+        if (!toward_light) coverage = tracer.render(camera);
 
         const glm::vec3 centre = grid.origin + 0.5f * grid.extent();
         const float reach = glm::length(camera.eye - centre) + glm::length(grid.extent());
@@ -103,7 +104,7 @@ void add_bench_shadows(CLI::App& root) {
             }
         };
         glm::vec3 light(0.0f);
-        if (!o->light.empty()) {
+        if (toward_light) {
             light = glm::vec3(o->light[0], o->light[1], o->light[2]);
             if (!std::isfinite(glm::dot(light, light)) || glm::length(light) < 1e-6f)
                 throw coif::Error::parameter("option --light", "must be a finite, non-zero direction X Y Z");
@@ -133,7 +134,6 @@ void add_bench_shadows(CLI::App& root) {
                 }
         }
         if (all.pixels == 0) throw coif::Error::parameter("camera", "no pixel sees the hair");
-        const bool toward_light = !o->light.empty();
         const auto share = [](const Bin& b) {
             const double gaps = b.gaps / b.pixels, fibres = b.fibres / b.pixels;
             return gaps > 0 && fibres > 0 ? -std::log(gaps) / fibres : 0.0;
