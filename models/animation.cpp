@@ -91,8 +91,8 @@ AnimationSpec parse_animation_spec(std::string_view text, const fs::path& file) 
         const auto count = [&](const char* key, double lo, double hi) {
             const double v = rd.number(d[key], std::string("/dynamics/") + key);
             if (v != std::floor(v) || v < lo || v > hi)
-                rd.fail(std::string("/dynamics/") + key, "must be a whole number in " + std::to_string(static_cast<long long>(lo)) + ".." +
-                                                             std::to_string(static_cast<long long>(hi)));
+                rd.fail(std::string("/dynamics/") + key, "must be a whole number in " + number_text(lo) + ".." +
+                                                             number_text(hi));
             return v;
         };
         if (d.contains("wind")) p.wind = glm::vec3(rd.vec3(d["wind"], "/dynamics/wind"));

@@ -101,7 +101,7 @@ struct Reader {
         const double x = number(v, path);
         if (x != std::floor(x)) fail(path, "expected an integer, got " + std::to_string(x));
         if (x < static_cast<double>(lo) || x > static_cast<double>(hi))
-            fail(path, std::to_string(static_cast<long long>(x)) + " is out of range [" + std::to_string(lo) + ", " +
+            fail(path, number_text(x) + " is out of range [" + std::to_string(lo) + ", " +
                            std::to_string(hi) + "]");
         return static_cast<long long>(x);
     }

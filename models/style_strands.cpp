@@ -160,8 +160,8 @@ Strands ClusterStrandSampler::sample(std::size_t ci) {
 }
 
 void refuse_strand_count(double total, double max) {
-    throw Error({}, "export", "the style's densities call for " + std::to_string(static_cast<long long>(total)) +
-                                  " strands, more than the limit of " + std::to_string(static_cast<long long>(max)));
+    throw Error({}, "export", "the style's densities call for " + number_text(total) +
+                                  " strands, more than the limit of " + number_text(max));
 }
 
 Strands sample_strands(const HairStyle& style, const StrandSampling& o, std::vector<std::uint32_t>* strand_cluster) {

@@ -2,7 +2,9 @@
 // coif::Error — the one error type of the project. It carries the file concerned, the place in it
 // ("byte 128", "strand 17, point 3", "JSON /clusters/2/radius", "option --lights") and what is wrong.
 // Libraries throw it; tools/ turns it into `coif: error: <file>: <place>: <what>` and exit code 1.
+#include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -32,5 +34,14 @@ private:
     std::string place_;
     std::string what_;
 };
+
+// A number as an error message shows it ("1e+30", "2.5", "inf"). Messages print what was read
+// through this rather than through an integer cast, which is undefined for values out of range.
+inline std::string number_text(double v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
 
 }  // namespace coif

@@ -58,12 +58,7 @@ using ParamTable = std::vector<Param<T>>;
 
 namespace param_detail {
 
-inline std::string number_text(double v) {
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using ::coif::number_text;
 
 inline std::string names_text(const std::vector<std::string>& names, const char* last_joiner) {
     std::string s;

@@ -161,7 +161,12 @@ TEST(HairStyle, BadFilesNameTheJsonPath) {
     {
         json d = example_style();
         d["layout"]["s_t"] = 1e12;
-        EXPECT_THAT(error_of(d), HasSubstr("JSON /layout/s_t: 1000000000000 is out of range"));
+        EXPECT_THAT(error_of(d), HasSubstr("JSON /layout/s_t: 1e+12 is out of range"));
+    }
+    {  // beyond a long long: the message must not cast it (undefined behaviour, found by the style fuzz target)
+        json d = example_style();
+        d["layout"]["layers"] = 2.88889e21;
+        EXPECT_THAT(error_of(d), HasSubstr("JSON /layout/layers: 2.88889e+21 is out of range [1, 256]"));
     }
     {
         json d = example_style();
