@@ -447,9 +447,9 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
 // The exact compositing's fragment storage has a limit (the GPU's shader-storage block size; 128 MiB, 16.8 M
 // fragments, on llvmpipe). `coif render` draws a frame beyond it in tiles (online/shell_renderer.h render), and exits 0
 // with every fragment held (it once wrote 2560 x 1440 with holes and exit 0, then failed). The default scene at 2048 x
-// 2048 needs 4 tiles. The image is the hair, not holes: its 32 x 32 box filter against the same view rendered at 64 x 64
-// (which needs no tiles): blurred PSNR over 30 dB, radiance within 5 %, and no pixel of the hair's silhouette empty
-// (mask IoU over 0.9). A size over the command line's maximum (8192) is refused with exit 2. Slow: one 2048 x 2048
+// 2048 needs 4 tiles. The image is the hair, not holes: its 16 x 16 box filter against the same view rendered at 128 x
+// 128 (which needs no tiles): blurred PSNR over 30 dB, radiance within 5 %, and no pixel of the hair's silhouette empty
+// (mask IoU over 0.9; measured 37.5 dB, radiance 1.016-1.035, IoU 0.978). A size over the command line's maximum (8192) is refused with exit 2. Slow: one 2048 x 2048
 // frame, about 40 s on 2 cores (4096 x 4096 took 31 tiles and 120 s, 8192 x 8192 118 tiles and 310 s).
 TEST(CliSlow, FramesBeyondTheFragmentStorageAreDrawnInTiles) {
     const auto dir = test::scratch_dir("cli-render-big");
@@ -462,14 +462,14 @@ TEST(CliSlow, FramesBeyondTheFragmentStorageAreDrawnInTiles) {
     std::printf("2048 x 2048: %d tiles, %.0f s\n", j["tiles"].get<int>(), j["render_milliseconds"].get<double>() / 1e3);
     const Image big = read_image(out);
     fs::remove(out);
-    Image small(64, 64, 4, 0.0f);
+    Image small(128, 128, 4, 0.0f);
     for (int y = 0; y < big.height; ++y)
         for (int x = 0; x < big.width; ++x)
-            for (int c = 0; c < 4; ++c) small.at(x / 32, y / 32)[c] += big.at(x, y)[c] / (32.0f * 32.0f);
-    r = run_coif("render --width 64 --height 64 --samples 16 --background 0 0 0 -o '" + (dir / "small.exr").string() + "'");
+            for (int c = 0; c < 4; ++c) small.at(x / 16, y / 16)[c] += big.at(x, y)[c] / (16.0f * 16.0f);
+    r = run_coif("render --width 128 --height 128 --samples 16 --background 0 0 0 -o '" + (dir / "small.exr").string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const CompareResult c = compare_images(read_image(dir / "small.exr"), small, CompareOptions{}, "64 x 64", "2048 x 2048 / 32");
-    std::printf("2048 x 2048 reduced against 64 x 64: blurred PSNR %.1f dB, radiance %.3f %.3f %.3f, IoU %.3f\n",
+    const CompareResult c = compare_images(read_image(dir / "small.exr"), small, CompareOptions{}, "128 x 128", "2048 x 2048 / 16");
+    std::printf("2048 x 2048 reduced against 128 x 128: blurred PSNR %.1f dB, radiance %.3f %.3f %.3f, IoU %.3f\n",
                 c.appearance.blurred_psnr_db, c.appearance.radiance_ratio[0], c.appearance.radiance_ratio[1],
                 c.appearance.radiance_ratio[2], c.appearance.mask_iou);
     EXPECT_GT(c.appearance.blurred_psnr_db, 30.0);
