@@ -449,8 +449,9 @@ TEST(Cli, RenderDefaultSceneWritesARealImage) {
 // with every fragment held (it once wrote 2560 x 1440 with holes and exit 0, then failed). The default scene at 2048 x
 // 2048 needs 4 tiles. The image is the hair, not holes: its 16 x 16 box filter against the same view rendered at 128 x
 // 128 (which needs no tiles): blurred PSNR over 30 dB, radiance within 5 %, and no pixel of the hair's silhouette empty
-// (mask IoU over 0.9; measured 37.5 dB, radiance 1.016-1.035, IoU 0.978). A size over the command line's maximum (8192) is refused with exit 2. Slow: one 2048 x 2048
-// frame, about 40 s on 2 cores (4096 x 4096 took 31 tiles and 120 s, 8192 x 8192 118 tiles and 310 s).
+// (mask IoU over 0.9; measured 37.5 dB, radiance 1.016-1.035, IoU 0.978). A size over the command line's maximum
+// (8192) is refused with exit 2. Slow: one 2048 x 2048 frame, about 30 s on 2 cores (4096 x 4096 took 31 tiles and
+// 120 s, 8192 x 8192 118 tiles and 310 s).
 TEST(CliSlow, FramesBeyondTheFragmentStorageAreDrawnInTiles) {
     const auto dir = test::scratch_dir("cli-render-big");
     const fs::path out = dir / "big.exr";
