@@ -29,7 +29,7 @@ const Param<shading::HairParameters>& hair_key(const char* key) {
 std::string shorthand_help(const char* key, const shading::HairParameters& defaults) {
     const Param<shading::HairParameters>& p = hair_key(key);
     std::string value;
-    for (int c = 0; c < p.components(); ++c) value += (c ? " " : "") + param_detail::number_text(param_detail::shortest_float(p.get(defaults, c)));
+    for (int c = 0; c < p.components(); ++c) value += (c ? " " : "") + number_text(param_detail::shortest_float(p.get(defaults, c)));
     return p.help + ": " + accepted_text(p) + " (the --params key " + p.key + "; default " + value + ")";
 }
 

@@ -58,8 +58,6 @@ using ParamTable = std::vector<Param<T>>;
 
 namespace param_detail {
 
-using ::coif::number_text;
-
 inline std::string names_text(const std::vector<std::string>& names, const char* last_joiner) {
     std::string s;
     for (size_t i = 0; i < names.size(); ++i)
@@ -79,7 +77,6 @@ inline double shortest_float(double v) {
 // "(1, 10]", "an integer 1..4", "true or false", "sorted, unsorted or exact", ...: what an entry accepts.
 template <class T>
 std::string accepted_text(const Param<T>& p) {
-    using param_detail::number_text;
     const std::string unit = p.unit.empty() ? "" : " " + p.unit;
     switch (p.kind) {
         case ParamKind::real:
@@ -102,7 +99,7 @@ void read_param(const Param<T>& p, const nlohmann::json& value, T& target, const
         if (!v.is_number()) throw Error(file, where, "expected a number");
         const double x = v.get<double>();
         const bool in_range = std::isfinite(x) && (p.min_exclusive ? x > p.min : x >= p.min) && x <= p.max;
-        if (!in_range) throw Error(file, where, param_detail::number_text(x) + " is outside " + accepted_text(p));
+        if (!in_range) throw Error(file, where, number_text(x) + " is outside " + accepted_text(p));
         return x;
     };
     switch (p.kind) {
