@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "models/core/error.h"
 #include "models/sector_features.h"
@@ -56,11 +57,39 @@ std::vector<float> column(std::span<const float> rows, int c) {
     return v;
 }
 
-std::vector<double> nearest_distances(const SatfIndex& index, std::span<const float> rows) {
+std::vector<double> nearest_distances(const std::vector<SectorMatch>& matches) {
     std::vector<double> d;
-    d.reserve(rows.size() / kRawFeatureCount);
-    for (const SectorMatch& m : index.match_all(rows)) d.push_back(m.distance[0]);
+    d.reserve(matches.size());
+    for (const SectorMatch& m : matches) d.push_back(m.distance[0]);
     return d;
+}
+
+// The ratios of mean density, style sector over its nearest record, of the non-empty style sectors.
+CoverageReport::DensityMatch density_match(const HrirDatabase& db, std::span<const float> style_rows,
+                                           const std::vector<SectorMatch>& matches, double empty_density) {
+    constexpr int kColumn = kRichColumn0 + kMeanDensity;
+    std::vector<double> ratio;
+    std::size_t outside = 0;
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+        const double style = style_rows[i * kRawFeatureCount + kColumn];
+        if (style < empty_density) continue;
+        const double record = db.features(matches[i].id[0])[kColumn];
+        const double r = record >= empty_density ? style / record : std::numeric_limits<double>::infinity();
+        ratio.push_back(r);
+        outside += r < 0.5 || r > 2.0 ? 1 : 0;
+    }
+    CoverageReport::DensityMatch m;
+    if (ratio.empty()) return m;
+    std::sort(ratio.begin(), ratio.end());
+    const auto at = [&](double q) {
+        return ratio[std::min(ratio.size() - 1, static_cast<std::size_t>(q * static_cast<double>(ratio.size() - 1) + 0.5))];
+    };
+    m.sectors = ratio.size();
+    m.p10 = at(0.1);
+    m.median = at(0.5);
+    m.p90 = at(0.9);
+    m.outside_half_to_double = static_cast<double>(outside) / static_cast<double>(ratio.size());
+    return m;
 }
 
 double empty_share(std::span<const float> rows, double threshold) {
@@ -111,7 +140,8 @@ CoverageReport database_coverage(const HrirDatabase& db, std::span<const float> 
         r.columns.push_back(cc);
     }
 
-    const std::vector<double> sd = nearest_distances(index, style_rows), hd = nearest_distances(index, held_out_rows);
+    const std::vector<SectorMatch> style_matches = index.match_all(style_rows);
+    const std::vector<double> sd = nearest_distances(style_matches), hd = nearest_distances(index.match_all(held_out_rows));
     r.style_distance = error_stats(sd);
     r.held_out_distance = error_stats(hd);
     std::size_t beyond = 0, nonempty = 0, nonempty_beyond = 0;
@@ -125,8 +155,13 @@ CoverageReport database_coverage(const HrirDatabase& db, std::span<const float> 
     }
     r.style_beyond_held_out_p95 = static_cast<double>(beyond) / static_cast<double>(sd.size());
     r.style_beyond_held_out_p95_nonempty = nonempty ? static_cast<double>(nonempty_beyond) / static_cast<double>(nonempty) : 0.0;
+    r.density_ratio = density_match(db, style_rows, style_matches, o.empty_density);
     return r;
 }
+
+namespace {
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+}  // namespace
 
 nlohmann::json to_json(const CoverageReport& r) {
     nlohmann::json cols = nlohmann::json::array();
@@ -146,7 +181,14 @@ nlohmann::json to_json(const CoverageReport& r) {
             {"columns", cols},
             {"nearest_record_distance", {{"style", stats(r.style_distance)}, {"held_out", stats(r.held_out_distance)}}},
             {"style_share_beyond_held_out_p95", r.style_beyond_held_out_p95},
-            {"style_share_beyond_held_out_p95_nonempty", r.style_beyond_held_out_p95_nonempty}};
+            {"style_share_beyond_held_out_p95_nonempty", r.style_beyond_held_out_p95_nonempty},
+            // JSON has no infinity: a ratio against an empty record is written as null.
+            {"density_ratio",
+             {{"sectors", r.density_ratio.sectors},
+              {"p10", finite_or_null(r.density_ratio.p10)},
+              {"median", finite_or_null(r.density_ratio.median)},
+              {"p90", finite_or_null(r.density_ratio.p90)},
+              {"share_outside_half_to_double", r.density_ratio.outside_half_to_double}}}};
 }
 
 }  // namespace coif

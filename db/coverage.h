@@ -17,7 +17,10 @@
 // set's columns), against the same for held-out random sectors of the database's own generator
 // (db/eval.h held_out_seed: not in the database) — the distance a sector from the generator's
 // distribution typically has. Style distances far above the held-out ones mean the look-up
-// extrapolates.
+// extrapolates. And the density match: each non-empty style sector's mean density ρ̄ over that of its nearest
+// record. The records' α and re are traced at the record's own density (the planar tracer's opacity is proportional to
+// ρ, 004 §5.1), so a ratio far from 1 means the shells draw that sector with the coverage of a sparser or denser one;
+// docs/quality.md, "The records' density against their sectors'", measures what it does to the image.
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -56,6 +59,13 @@ struct CoverageReport {
     ErrorStats style_distance, held_out_distance;  // nearest-record distances (median, p95, mean)
     double style_beyond_held_out_p95 = 0;  // share of style sectors farther than the held-out p95
     double style_beyond_held_out_p95_nonempty = 0;  // the same among non-empty style sectors
+    // ρ̄ of each non-empty style sector over ρ̄ of its nearest record (a record with ρ̄ below empty_density counts as
+    // outside): quantiles, and the share outside [1/2, 2]. All 0 when the style has no non-empty sector.
+    struct DensityMatch {
+        std::size_t sectors = 0;
+        double p10 = 0, median = 0, p90 = 0;
+        double outside_half_to_double = 0;
+    } density_ratio;
 };
 
 // The raw features of held-out sectors 0..n-1 of the database's generator (features only, no tracing).

@@ -229,7 +229,9 @@ void add_db(CLI::App& root) {
         "1st-99th percentile and range against the style's range, with the share of style sectors below p1 / above p99\n"
         "(≈ 1 % each if the generator's ranges fit); then the distance of each style sector to its nearest record in the\n"
         "look-up's normalised feature space, against held-out random sectors of the database's own generator (median,\n"
-        "p95), and the share of style sectors farther than the held-out p95. Format: db/coverage.h.");
+        "p95), and the share of style sectors farther than the held-out p95; and each non-empty sector's mean density over\n"
+        "its nearest record's (the records are traced at their own density, so a ratio far from 1 draws the sector with\n"
+        "another sector's coverage). Format: db/coverage.h.");
     coverage->add_option("file", co->file, "Database file")->required()->check(CLI::ExistingFile);
     coverage->add_option("styles", co->styles, "Style files (JSON, coif style import), or @default for the embedded style")->required();
     coverage->add_option("--features", co->set, "Feature set of the distances: paper, paper+shape, rich, rich+shape (default rich+shape)");
@@ -268,6 +270,10 @@ void add_db(CLI::App& root) {
                         r.held_out_distance.p95);
             std::printf("  style sectors beyond the held-out p95: %.1f %% (%.1f %% of the non-empty ones)\n", 100 * r.style_beyond_held_out_p95,
                         100 * r.style_beyond_held_out_p95_nonempty);
+            const auto& dm = r.density_ratio;
+            std::printf("  mean density, style sector over its nearest record (%zu non-empty sectors): p10 %.3g, median %.3g, p90 %.3g;"
+                        " %.1f %% outside [1/2, 2]\n",
+                        dm.sectors, dm.p10, dm.median, dm.p90, 100 * dm.outside_half_to_double);
         }
         if (co->json) coif::cli::print_json(all);
     });

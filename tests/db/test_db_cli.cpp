@@ -152,8 +152,23 @@ TEST(DbCli, CoverageOfTheDefaultStyleAsJson) {
         EXPECT_GE(d["median"].get<double>(), 0.0);
         EXPECT_GE(d["p95"].get<double>(), d["median"].get<double>());
     }
+    // The density match: the tiny database's 6 records cannot match the style's densities, but the figures are ordered
+    // quantiles of positive ratios over the non-empty sectors, and a share.
+    const auto& dm = c["density_ratio"];
+    ASSERT_TRUE(dm.is_object()) << c.dump();
+    EXPECT_GT(dm["sectors"].get<int>(), 0);
+    EXPECT_LE(dm["sectors"].get<int>(), c["style_sectors"].get<int>());
+    ASSERT_TRUE(dm["p10"].is_number() && dm["median"].is_number()) << dm.dump();
+    EXPECT_GT(dm["p10"].get<double>(), 0.0);
+    EXPECT_LE(dm["p10"].get<double>(), dm["median"].get<double>());
+    if (dm["p90"].is_number()) {
+        EXPECT_LE(dm["median"].get<double>(), dm["p90"].get<double>());
+    }
+    EXPECT_GE(dm["share_outside_half_to_double"].get<double>(), 0.0);
+    EXPECT_LE(dm["share_outside_half_to_double"].get<double>(), 1.0);
     const auto text = run_coif("db coverage " + q(db) + " @default --held-out 5");
     EXPECT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("mean density, style sector over its nearest record"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find("ln_depth_over_lambda"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find("nearest-record distance"), std::string::npos) << text.out;
 }

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "db/coverage.h"
 #include "db/hrir_db.h"
 #include "db/satf.h"
 #include "models/core/atomic_file.h"
@@ -179,6 +180,33 @@ TEST(HrirDb, LookUpOfARecordsOwnFeaturesReturnsThatRecord) {
     // The batched form agrees with single queries.
     const auto all = index.match_all(db.all_features());
     for (std::size_t i = 0; i < db.size(); ++i) EXPECT_EQ(all[i].id[0], index.match(db.features(i)).id[0]);
+}
+
+// `coif db coverage`'s density match: a database's own sectors, looked up, find records of their own density (ratio 1
+// exactly: the nearest record of a sector's features is itself or one with identical features), and a style whose
+// sectors are all empty has no ratio at all.
+TEST(HrirDb, CoverageOfADatabasesOwnSectorsMatchesTheirDensity) {
+    const auto dir = coif::test::scratch_dir("db-coverage-density");
+    auto o = tiny(12);
+    coif::build_database(o, dir / "a.db");
+    const auto db = coif::HrirDatabase::open(dir / "a.db");
+    const std::vector<float> held = coif::held_out_sector_features(db.params(), 4);
+    const std::span<const float> own = db.all_features();
+    const coif::CoverageReport r = coif::database_coverage(db, own, held, coif::CoverageOptions{});
+    std::size_t nonempty = 0;
+    for (std::size_t i = 0; i < db.size(); ++i) nonempty += db.features(i)[coif::kRichColumn0 + coif::kMeanDensity] >= 1e-3 ? 1 : 0;
+    ASSERT_GT(nonempty, 0u);
+    EXPECT_EQ(r.density_ratio.sectors, nonempty);
+    EXPECT_DOUBLE_EQ(r.density_ratio.p10, 1.0);
+    EXPECT_DOUBLE_EQ(r.density_ratio.median, 1.0);
+    EXPECT_DOUBLE_EQ(r.density_ratio.p90, 1.0);
+    EXPECT_DOUBLE_EQ(r.density_ratio.outside_half_to_double, 0.0);
+
+    std::vector<float> empty(own.begin(), own.end());
+    for (std::size_t i = 0; i < db.size(); ++i) empty[i * coif::kRawFeatureCount + coif::kRichColumn0 + coif::kMeanDensity] = 0.0f;
+    const coif::CoverageReport e = coif::database_coverage(db, empty, held, coif::CoverageOptions{});
+    EXPECT_EQ(e.density_ratio.sectors, 0u);
+    EXPECT_EQ(e.density_ratio.median, 0.0);
 }
 
 TEST(HrirDb, SavedFlannIndexIsBoundToItsDatabase) {
