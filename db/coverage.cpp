@@ -68,26 +68,23 @@ std::vector<double> nearest_distances(const std::vector<SectorMatch>& matches) {
 CoverageReport::DensityMatch density_match(const HrirDatabase& db, std::span<const float> style_rows,
                                            const std::vector<SectorMatch>& matches, double empty_density) {
     constexpr int kColumn = kRichColumn0 + kMeanDensity;
-    std::vector<double> ratio;
+    std::vector<float> ratio;
     std::size_t outside = 0;
     for (std::size_t i = 0; i < matches.size(); ++i) {
         const double style = style_rows[i * kRawFeatureCount + kColumn];
         if (style < empty_density) continue;
         const double record = db.features(matches[i].id[0])[kColumn];
         const double r = record >= empty_density ? style / record : std::numeric_limits<double>::infinity();
-        ratio.push_back(r);
+        ratio.push_back(static_cast<float>(r));
         outside += r < 0.5 || r > 2.0 ? 1 : 0;
     }
     CoverageReport::DensityMatch m;
     if (ratio.empty()) return m;
     std::sort(ratio.begin(), ratio.end());
-    const auto at = [&](double q) {
-        return ratio[std::min(ratio.size() - 1, static_cast<std::size_t>(q * static_cast<double>(ratio.size() - 1) + 0.5))];
-    };
     m.sectors = ratio.size();
-    m.p10 = at(0.1);
-    m.median = at(0.5);
-    m.p90 = at(0.9);
+    m.p10 = quantile(ratio, 0.1);
+    m.median = quantile(ratio, 0.5);
+    m.p90 = quantile(ratio, 0.9);
     m.outside_half_to_double = static_cast<double>(outside) / static_cast<double>(ratio.size());
     return m;
 }
