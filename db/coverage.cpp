@@ -44,6 +44,11 @@ std::vector<float> held_out_sector_features(const DbParams& params, std::size_t 
 
 namespace {
 
+// The raw column of a sector's mean density ρ̄ (models/sector_features.h): empty sectors and the density match read it.
+constexpr int kMeanDensityColumn = kRichColumn0 + kMeanDensity;
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
 // The q-quantile of sorted values (nearest rank, as error_stats).
 double quantile(const std::vector<float>& sorted, double q) {
     return sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5))];
@@ -67,13 +72,12 @@ std::vector<double> nearest_distances(const std::vector<SectorMatch>& matches) {
 // The ratios of mean density, style sector over its nearest record, of the non-empty style sectors.
 CoverageReport::DensityMatch density_match(const HrirDatabase& db, std::span<const float> style_rows,
                                            const std::vector<SectorMatch>& matches, double empty_density) {
-    constexpr int kColumn = kRichColumn0 + kMeanDensity;
     std::vector<float> ratio;
     std::size_t outside = 0;
     for (std::size_t i = 0; i < matches.size(); ++i) {
-        const double style = style_rows[i * kRawFeatureCount + kColumn];
+        const double style = style_rows[i * kRawFeatureCount + kMeanDensityColumn];
         if (style < empty_density) continue;
-        const double record = db.features(matches[i].id[0])[kColumn];
+        const double record = db.features(matches[i].id[0])[kMeanDensityColumn];
         const double r = record >= empty_density ? style / record : std::numeric_limits<double>::infinity();
         ratio.push_back(static_cast<float>(r));
         outside += r < 0.5 || r > 2.0 ? 1 : 0;
@@ -91,7 +95,7 @@ CoverageReport::DensityMatch density_match(const HrirDatabase& db, std::span<con
 
 double empty_share(std::span<const float> rows, double threshold) {
     std::size_t n = 0;
-    for (std::size_t i = kRichColumn0 + kMeanDensity; i < rows.size(); i += kRawFeatureCount) n += rows[i] < threshold ? 1 : 0;
+    for (std::size_t i = kMeanDensityColumn; i < rows.size(); i += kRawFeatureCount) n += rows[i] < threshold ? 1 : 0;
     return static_cast<double>(n) / static_cast<double>(rows.size() / kRawFeatureCount);
 }
 
@@ -145,7 +149,7 @@ CoverageReport database_coverage(const HrirDatabase& db, std::span<const float> 
     for (std::size_t i = 0; i < sd.size(); ++i) {
         const bool far = sd[i] > r.held_out_distance.p95;
         beyond += far ? 1 : 0;
-        if (style_rows[i * kRawFeatureCount + kRichColumn0 + kMeanDensity] >= o.empty_density) {
+        if (style_rows[i * kRawFeatureCount + kMeanDensityColumn] >= o.empty_density) {
             ++nonempty;
             nonempty_beyond += far ? 1 : 0;
         }
@@ -155,10 +159,6 @@ CoverageReport database_coverage(const HrirDatabase& db, std::span<const float> 
     r.density_ratio = density_match(db, style_rows, style_matches, o.empty_density);
     return r;
 }
-
-namespace {
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-}  // namespace
 
 nlohmann::json to_json(const CoverageReport& r) {
     nlohmann::json cols = nlohmann::json::array();
