@@ -5,12 +5,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "tests/common/run.h"
+#include "tests/common/test_data.h"
 
 namespace coif {
 namespace {
@@ -79,6 +82,82 @@ TEST(LightSweepSlow, LightingAtTheAxesFollowsTheReferenceUnderOneNarrowLightFrom
     EXPECT_EQ(ratios, 78);
     EXPECT_GE(in_band, 70);
     fs::remove_all(dir);
+}
+
+// The full model (the renderer's defaults: re, shadows between clusters, the own cluster's shadow, multiple scattering)
+// against the full reference, under the lights of every map in ../shared/data (40 SRBF lights each, `coif env fit`),
+// each turned about +y by 0°, 90°, 180° and 270° (`--rotate-lights` on both renderers), and from a ring of views
+// (azimuth every 45° at elevations −20°, 10° and 40°) under the courtyard's lights: issue 16's sweeps 2 to 4. About
+// 5 minutes on 2 cores.
+//
+// Tolerances. The issue's band is [0.8, 1.25] per channel. Measured (docs/quality.md, "The sweeps as tests"): 46 of the
+// 48 channel ratios of the maps in it, all in 0.87–1.46 (out: the courtyard turned 270°, 1.46 / 1.33 in red and green,
+// its sun from −x, where the single light is 1.51–1.63 too); 71 of the 72 of the ring, in 0.80–1.27 (out: azimuth 270°,
+// elevation −20°, blue 1.27). Five ratios lie within 0.05 of the band's edges, so the test asks for 45 of 48 and 68 of 72,
+// and every ratio in [0.7, 1.6]: it fails on a return to the maps' 2–6× of the issue, and not on one ratio at the edge
+// moving by the references' noise (well under 1 % of a mean over ~1 500 hair pixels at 64 samples per pixel). Issue 16
+// stays open until every ratio is in the band.
+TEST(LightSweepSlow, TheFullModelFollowsTheReferenceUnderEveryMapTurnedAndFromARingOfViews) {
+    const char* names[] = {"courtyard", "city", "night", "studio"};
+    std::vector<fs::path> maps;
+    for (const char* name : names) {
+        COIF_SHARED_DATA(map, std::string("blender_studiolight_") + name + ".exr");
+        maps.push_back(map);
+    }
+    const fs::path dir = test::scratch_dir("map-sweep");
+    {
+        std::ofstream p(dir / "p.json");
+        p << R"({"lod_pixels": 0})";  // full meshes, as the single-light sweep above says why
+    }
+    const std::string size = " --width 96 --height 64 --background 0 0 0";
+    struct Tally {
+        int in_band = 0, ratios = 0;
+        double lo = 1e9, hi = 0;
+    };
+    // One case: the same lights (and `how`: a rotation or a view) given to both renderers.
+    const auto check = [&](const fs::path& lights, const std::string& how, const std::string& where, Tally& t) {
+        const auto f = run_coif("reference --lights '" + lights.string() + "'" + how + " --spp 64" + size + " -o '" +
+                                (dir / "f.exr").string() + "'");
+        ASSERT_EQ(f.exit_code, 0) << where << ": " << f.err;
+        const auto r = run_coif("render --env '" + lights.string() + "'" + how + " --params '" + (dir / "p.json").string() +
+                                "'" + size + " -o '" + (dir / "r.exr").string() + "'");
+        ASSERT_EQ(r.exit_code, 0) << where << ": " << r.err;
+        const auto c = run_coif("compare '" + (dir / "f.exr").string() + "' '" + (dir / "r.exr").string() + "' --json");
+        ASSERT_EQ(c.exit_code, 0) << where << ": " << c.err;
+        const auto ratio = nlohmann::json::parse(c.out)["appearance"]["radiance_ratio"];
+        std::printf("%s: %.3f %.3f %.3f\n", where.c_str(), ratio[0].get<double>(), ratio[1].get<double>(),
+                    ratio[2].get<double>());
+        for (int ch = 0; ch < 3; ++ch) {
+            const double v = ratio[ch].get<double>();
+            t.lo = std::min(t.lo, v);
+            t.hi = std::max(t.hi, v);
+            ++t.ratios;
+            if (v >= 0.8 && v <= 1.25) ++t.in_band;
+            EXPECT_GE(v, 0.7) << where << ", channel " << ch;
+            EXPECT_LE(v, 1.6) << where << ", channel " << ch;
+        }
+    };
+    Tally turned, ring;
+    for (size_t m = 0; m < maps.size(); ++m) {
+        const fs::path lights = dir / (std::string(names[m]) + ".json");
+        const auto fit = run_coif("env fit '" + maps[m].string() + "' -n 40 -o '" + lights.string() + "'");
+        ASSERT_EQ(fit.exit_code, 0) << names[m] << ": " << fit.err;
+        for (int turn = 0; turn < 360; turn += 90)
+            check(lights, " --rotate-lights " + std::to_string(turn),
+                  std::string(names[m]) + " turned " + std::to_string(turn) + "°", turned);
+    }
+    for (int azimuth = 0; azimuth < 360; azimuth += 45)
+        for (int elevation : {-20, 10, 40})
+            check(dir / "courtyard.json", " --azimuth " + std::to_string(azimuth) + " --elevation " + std::to_string(elevation),
+                  "view (" + std::to_string(azimuth) + "°, " + std::to_string(elevation) + "°)", ring);
+    std::printf("maps turned: %d of %d channel ratios in [0.8, 1.25]; range %.3f - %.3f\n", turned.in_band, turned.ratios,
+                turned.lo, turned.hi);
+    std::printf("ring of views: %d of %d channel ratios in [0.8, 1.25]; range %.3f - %.3f\n", ring.in_band, ring.ratios,
+                ring.lo, ring.hi);
+    EXPECT_EQ(turned.ratios, 48);
+    EXPECT_EQ(ring.ratios, 72);
+    EXPECT_GE(turned.in_band, 45);
+    EXPECT_GE(ring.in_band, 68);
 }
 
 }  // namespace
