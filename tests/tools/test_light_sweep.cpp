@@ -1,7 +1,7 @@
-// The shells under lighting that no one tuned for (issue 16): one narrow SRBF light from 26 directions around
-// the default style, `coif render` against `coif reference` of the same style's strands, through the command
-// line as a user runs them (docs/quality.md, "The fibres' tangents about the axis"). Slow: 26 × 2 renders,
-// about 2 minutes on 2 cores.
+// The shells under lighting and views that no one tuned for (issue 16, item 1): `coif render` against `coif reference`
+// of the same style's strands, through the command line as a user runs them. One narrow SRBF light from 26 directions
+// around the default style (docs/quality.md, "The fibres' tangents about the axis"; 26 × 2 renders, about 2 minutes on
+// 2 cores), and the shared maps turned and the ring of views ("The sweeps as tests"; about 4 minutes).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
