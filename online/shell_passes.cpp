@@ -306,7 +306,7 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
     std::vector<std::string> defines{"SHELL_NEIGHBOURS " + std::to_string(s.neighbours),
                                      "SHELL_LIGHTING " + std::to_string(lighting), "SHELL_DEBUG " + std::to_string(s.debug),
                                      "SHELL_FOURIER " + std::to_string(s.fourier_order),
-                                     "SHELL_OWN " + std::to_string(!s.own_cluster_shadow ? 0 : s.own_cluster_forward ? 2 : 1),
+                                     "SHELL_OWN " + std::to_string(own_cluster_variant(s)),
                                      "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth)),
                                      std::string("SHELL_FOLD ") + (fold ? "1" : "0"),
                                      std::string("SHELL_TILT_PICK ") + (LightingPass::tilt_pick(s) ? "1" : "0"),
@@ -450,7 +450,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                 lighting.bind_inputs(prog, gpu, s);
             else if (s.own_cluster_shadow) {
                 lighting.bind_tables(prog);  // lut_own_cluster
-                if (s.own_cluster_forward) glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
+                if (own_cluster_variant(s) == 2) glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
             }
         }
         if (exact) {

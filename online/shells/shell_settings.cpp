@@ -9,6 +9,11 @@
 
 namespace coif::gl {
 
+int own_cluster_variant(const ShellSettings& settings) {
+    if (!settings.own_cluster_shadow) return 0;
+    return settings.own_cluster_forward && settings.hair.multiple ? 2 : 1;
+}
+
 int supersampling(const ShellSettings& settings) {
     if (!draws_single_sample(settings.compositing)) return 1;
     return std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);
@@ -129,8 +134,8 @@ ParamTable<ShellSettings> make_table() {
     t.push_back(bool_param<S>("own_cluster_shadow", "the own cluster shades each fibre by its side toward the light",
                               [](auto& s) -> auto& { return s.own_cluster_shadow; }));
     t.push_back(bool_param<S>("own_cluster_forward",
-                              "with own_cluster_shadow, the light the own cluster's fibres scatter forward reaches the "
-                              "fibres behind them (false: the unscattered light only)",
+                              "with own_cluster_shadow and multiple scattering, the light the own cluster's fibres scatter "
+                              "forward reaches the fibres behind them (false: the unscattered light only)",
                               [](auto& s) -> auto& { return s.own_cluster_forward; }));
     t.push_back(bool_param<S>("shadow_neighbours",
                               "shadows between clusters start at the own cluster's narrow half-axis, counting the "

@@ -36,6 +36,7 @@ struct ShellSettings {
     bool own_cluster_shadow = true;
     // With own_cluster_shadow, the light that the own cluster's fibres scatter forward reaches the fibres behind them, as
     // between clusters (shaders/lighting/own_cluster.glsl own_cluster_forward_series; false: the unscattered light only).
+    // It is multiple scattering, so it goes with it: off where hair.multiple is false (own_cluster_variant).
     bool own_cluster_forward = true;
     // The shadows between clusters start at most the own cluster's narrow half-axis out (times the ray's stretch), so
     // that they count the neighbouring clusters whose fibres overlap its ellipse (false: where the ray leaves the
@@ -172,6 +173,11 @@ inline bool draws_single_sample(Compositing c) {
 // The supersampling of ShellRenderer::render: f × f shifted frames per image, f = round(√samples) clamped to
 // 1..4, for the exact and weighted compositings (the blended modes use MSAA: 1).
 int supersampling(const ShellSettings& settings);
+
+// The own cluster's shadow as the shells' shading takes it (shaders/gl/shell_shade.glsl SHELL_OWN): 0 none
+// (own_cluster_shadow false), 2 with the light that its fibres scatter forward (own_cluster_forward, with multiple
+// scattering on), 1 the unscattered light only. `coif reference --max-depth 1` has no forward-scattered light either.
+int own_cluster_variant(const ShellSettings& settings);
 
 // The parameters file: one JSON object, every key optional, read through shell_settings_table(): the hair's
 // keys (shading::hair_parameter_table(), shaders/hair_parameters.h: eta, sigma_a, alpha_R_deg, …; degrees

@@ -515,6 +515,25 @@ TEST(ShellRenderer, RenderingIsDeterministic) {
     EXPECT_EQ(a.pixels, b.pixels);
 }
 
+// The own cluster's forward-scattered light (own_cluster_forward) is multiple scattering: with `multiple` off the shells
+// draw single scattering alone, as `coif reference --max-depth 1` does, whatever own_cluster_forward says
+// (gl::own_cluster_variant). With `multiple` on the switch changes the image (so the first check is not vacuous).
+TEST(ShellRenderer, SingleScatteringLeavesOutTheOwnClustersForwardScatteredLight) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer);
+    const auto draw = [&](bool multiple, bool forward) {
+        gl::ShellSettings s;
+        s.samples = 1;
+        s.hair.multiple = multiple;
+        s.own_cluster_forward = forward;
+        return renderer.render(camera, s);
+    };
+    EXPECT_EQ(draw(false, true).pixels, draw(false, false).pixels);
+    EXPECT_NE(draw(true, true).pixels, draw(true, false).pixels);
+}
+
 // render() lights its first frame only and reuses those sums for the shifted frames after it (the same eye, lights
 // and settings). Nothing of that may leak: a render from another view right after it is bit for bit the render of a
 // renderer that never drew before.

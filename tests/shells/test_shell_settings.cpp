@@ -37,6 +37,19 @@ protected:
     std::filesystem::path dir_;
 };
 
+// The own cluster's shadow variant the shading compiles: the forward-scattered light only with multiple scattering.
+TEST(ShellSettings, TheOwnClustersForwardLightGoesWithMultipleScattering) {
+    gl::ShellSettings s;
+    EXPECT_EQ(gl::own_cluster_variant(s), 2);  // the defaults
+    s.hair.multiple = false;
+    EXPECT_EQ(gl::own_cluster_variant(s), 1);
+    s.hair.multiple = true;
+    s.own_cluster_forward = false;
+    EXPECT_EQ(gl::own_cluster_variant(s), 1);
+    s.own_cluster_shadow = false;
+    EXPECT_EQ(gl::own_cluster_variant(s), 0);
+}
+
 TEST_F(ShellSettingsFile, BadFilesAreRefusedAtTheirKey) {
     EXPECT_EQ(refusal(R"({"neighbours": 9})"), "JSON /neighbours: must be an integer 1..4");
     EXPECT_EQ(refusal(R"({"eta": 0.5})").rfind("JSON /eta: ", 0), 0u);
