@@ -316,29 +316,26 @@ void add_render(CLI::App& root) {
         }
         if (o->aovs) {  // after the figures above, which are the image's own
             const std::filesystem::path out(o->output);
-            struct Aov {
-                std::string name;
-                int lobes;
-                bool multiple;
-                int debug;
-            };
-            std::vector<Aov> aovs;  // each lobe alone, the multiple scattering alone, the shadow
-            for (const coif::shading::Lobe& lobe : coif::shading::kLobes) aovs.push_back({lobe.name, lobe.bit, false, 0});
-            aovs.push_back({"multiple", 0, true, 0});
-            aovs.push_back({"shadow", coif::shading::kAllLobes, settings.hair.multiple, 4});
-            for (const Aov& a : aovs) {
-                coif::gl::ShellSettings aov = settings;
-                aov.background = glm::vec3(0.0f);
-                aov.hair.lobes = a.lobes;
-                aov.hair.multiple = a.multiple;
-                aov.debug = a.debug;
-                const std::filesystem::path path =
-                    out.parent_path() / (out.stem().string() + "." + a.name + out.extension().string());
+            const auto write_aov = [&](const std::string& name, const coif::Image& image) {
+                const std::filesystem::path path = out.parent_path() / (out.stem().string() + "." + name + out.extension().string());
                 coif::WriteOptions aw = wo;
-                aw.description = wo.description + "; AOV " + a.name;
-                coif::write_image(path, renderer.render(camera, aov), aw);
-                std::fprintf(stderr, "AOV %-8s -> %s\n", a.name.c_str(), path.c_str());
+                aw.description = wo.description + "; AOV " + name;
+                coif::write_image(path, image, aw);
+                std::fprintf(stderr, "AOV %-8s -> %s\n", name.c_str(), path.c_str());
+            };
+            for (const coif::gl::ScatteringAov& a : coif::gl::scattering_aovs(settings)) {  // the scattering terms
+                coif::Image image = renderer.render(camera, a.with);
+                if (a.without) {
+                    const coif::Image less = renderer.render(camera, *a.without);
+                    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+                        if (i % image.channels != 3) image.pixels[i] -= less.pixels[i];
+                }
+                write_aov(a.name, image);
             }
+            coif::gl::ShellSettings shadow = settings;  // where light reaches
+            shadow.background = glm::vec3(0.0f);
+            shadow.debug = 4;
+            write_aov("shadow", renderer.render(camera, shadow));
         }
     });
 }

@@ -14,6 +14,24 @@ int own_cluster_variant(const ShellSettings& settings) {
     return settings.own_cluster_forward && settings.hair.multiple ? 2 : 1;
 }
 
+std::vector<ScatteringAov> scattering_aovs(const ShellSettings& settings) {
+    ShellSettings over_black = settings;
+    over_black.background = glm::vec3(0.0f);
+    over_black.debug = 0;
+    std::vector<ScatteringAov> aovs;
+    for (const shading::Lobe& lobe : shading::kLobes) {
+        ShellSettings one = over_black;
+        one.hair.lobes = lobe.bit;
+        one.hair.multiple = false;
+        aovs.push_back({lobe.name, one, std::nullopt});
+    }
+    ShellSettings with = over_black, without = over_black;
+    with.hair.multiple = true;
+    without.hair.multiple = false;
+    aovs.push_back({"multiple", with, without});
+    return aovs;
+}
+
 int supersampling(const ShellSettings& settings) {
     if (!draws_single_sample(settings.compositing)) return 1;
     return std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.samples)))), 1, 4);

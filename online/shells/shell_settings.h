@@ -174,6 +174,18 @@ inline bool draws_single_sample(Compositing c) {
 // 1..4, for the exact and weighted compositings (the blended modes use MSAA: 1).
 int supersampling(const ShellSettings& settings);
 
+// `coif render --aovs`: each scattering term of `settings`' image alone, over black. A term is the render of `with`
+// less that of `without` where it has one (the same renderer and view; RGB only, the coverage is the same): each lobe
+// is its single scattering alone, and `multiple` is all that multiple scattering adds to the lobes (the dual
+// scattering and the own cluster's forward-scattered light, which scatters the lobes' light: own_cluster_variant).
+// So the terms add up to the image over black, up to each lobe's own max(·, 0) clamp.
+struct ScatteringAov {
+    std::string name;
+    ShellSettings with;
+    std::optional<ShellSettings> without;
+};
+std::vector<ScatteringAov> scattering_aovs(const ShellSettings& settings);
+
 // The own cluster's shadow as the shells' shading takes it (shaders/gl/shell_shade.glsl SHELL_OWN): 0 none
 // (own_cluster_shadow false), 2 with the light that its fibres scatter forward (own_cluster_forward, with multiple
 // scattering on), 1 the unscattered light only. `coif reference --max-depth 1` has no forward-scattered light either.

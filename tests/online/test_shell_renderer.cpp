@@ -301,10 +301,10 @@ double mean_abs_difference(const Image& a, const Image& b) {
 }
 
 TEST(ShellRenderer, ScatteringAovsAddUpToTheImage) {
-    // coif render --aovs: R, TT, TRT and multiple scattering each alone, over black. Compositing is
-    // linear in the premultiplied colours at fixed α, so they add up to the full image over black —
-    // up to each fragment's max(Σ_k …, 0) clamp of its Fourier sum (a lobe alone can dip below zero
-    // where the sum does not) and RGBA16F rounding: 2 % of the image's mean.
+    // coif render --aovs (gl::scattering_aovs): each lobe's single scattering alone, and all that multiple scattering
+    // adds (a render with it less one without), over black. Compositing is linear in the premultiplied colours at
+    // fixed α, so they add up to the full image over black — up to each fragment's max(Σ_k …, 0) clamp of its Fourier
+    // sum (a lobe alone can dip below zero where the sum does not) and RGBA16F rounding: 2 % of the image's mean.
     auto context = gl::Context::headless();
     gl::ShellRenderer renderer(cook_shells(two_cluster_style(), test_index(), glm::mat3(1.0f)));
     renderer.set_lights(two_lights());
@@ -315,17 +315,17 @@ TEST(ShellRenderer, ScatteringAovsAddUpToTheImage) {
     const Image full = renderer.render(camera, s);
     Image sum = full;
     std::fill(sum.pixels.begin(), sum.pixels.end(), 0.0f);
-    std::vector<std::pair<int, bool>> parts;  // each lobe alone, then the multiple scattering alone
-    for (const shading::Lobe& lobe : shading::kLobes) parts.emplace_back(lobe.bit, false);
-    parts.emplace_back(0, true);
-    for (const auto& [lobes, multiple] : parts) {
-        gl::ShellSettings a = s;
-        a.hair.lobes = lobes;
-        a.hair.multiple = multiple;
-        const Image part = renderer.render(camera, a);
+    const std::vector<gl::ScatteringAov> aovs = gl::scattering_aovs(s);
+    ASSERT_EQ(aovs.size(), shading::kLobes.size() + 1);
+    for (const gl::ScatteringAov& a : aovs) {
+        const Image part = renderer.render(camera, a.with);
+        const Image less = a.without ? renderer.render(camera, *a.without) : Image{};
         for (std::size_t i = 0; i < sum.pixels.size(); ++i)
-            if (i % 4 != 3) sum.pixels[i] += part.pixels[i];
+            if (i % 4 != 3) sum.pixels[i] += part.pixels[i] - (a.without ? less.pixels[i] : 0.0f);
     }
+    // The lobes alone draw no multiple scattering, the own cluster's forward-scattered light included (it scatters the
+    // lobes' light): the sum of the lobes is the image with multiple scattering off.
+    for (std::size_t k = 0; k < shading::kLobes.size(); ++k) EXPECT_FALSE(aovs[k].with.hair.multiple) << aovs[k].name;
     double mean = 0, diff = 0;
     for (std::size_t i = 0; i < full.pixels.size(); ++i)
         if (i % 4 != 3) {
