@@ -20,6 +20,39 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_coif;
 
+// One sweep's channel ratios, against the issue's band [0.8, 1.25] per channel.
+struct Tally {
+    int in_band = 0, ratios = 0;
+    double lo = 1e9, hi = 0;
+    void print(const char* what) const {
+        std::printf("%s: %d of %d channel ratios in [0.8, 1.25]; range %.3f - %.3f\n", what, in_band, ratios, lo, hi);
+    }
+};
+
+// One case of a sweep: `coif reference REFERENCE` against `coif render RENDER` (each at 96 × 64 over black, into `dir`),
+// compared by `coif compare --json`. Each channel's radiance ratio is printed, tallied, and expected in [low, high].
+void sweep_case(const fs::path& dir, const std::string& reference, const std::string& render, const std::string& where,
+                double low, double high, Tally& t) {
+    const std::string size = " --width 96 --height 64 --background 0 0 0";
+    const auto f = run_coif("reference " + reference + size + " -o '" + (dir / "f.exr").string() + "'");
+    ASSERT_EQ(f.exit_code, 0) << where << ": " << f.err;
+    const auto r = run_coif("render " + render + size + " -o '" + (dir / "r.exr").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << where << ": " << r.err;
+    const auto c = run_coif("compare '" + (dir / "f.exr").string() + "' '" + (dir / "r.exr").string() + "' --json");
+    ASSERT_EQ(c.exit_code, 0) << where << ": " << c.err;
+    const auto ratio = nlohmann::json::parse(c.out)["appearance"]["radiance_ratio"];
+    std::printf("%s: %.3f %.3f %.3f\n", where.c_str(), ratio[0].get<double>(), ratio[1].get<double>(), ratio[2].get<double>());
+    for (int ch = 0; ch < 3; ++ch) {
+        const double v = ratio[ch].get<double>();
+        t.lo = std::min(t.lo, v);
+        t.hi = std::max(t.hi, v);
+        ++t.ratios;
+        if (v >= 0.8 && v <= 1.25) ++t.in_band;
+        EXPECT_GE(v, low) << where << ", channel " << ch;
+        EXPECT_LE(v, high) << where << ", channel " << ch;
+    }
+}
+
 // What this checks today is the lighting at the shells' axes: single scattering, no shadows in either renderer,
 // and the shells' `debug` 3 (the lighting C₀ · α, without the records' re). That is the part that the fibres'
 // measured tilts made right; the full model (re, shadows, multiple scattering) still departs from the reference
@@ -40,9 +73,7 @@ TEST(LightSweepSlow, LightingAtTheAxesFollowsTheReferenceUnderOneNarrowLightFrom
         // from straight above, the ratios were 0.79 / 0.75 / 0.72, the blue one outside the bound; 71 of 78 in the band).
         p << R"({"multiple": false, "shadows": false, "kappa_shadow": 0, "debug": 3, "lod_pixels": 0})";
     }
-    const std::string size = " --width 96 --height 64 --background 0 0 0";
-    int in_band = 0, ratios = 0;
-    double lo = 1e9, hi = 0;
+    Tally t;
     for (int x = -1; x <= 1; ++x)
         for (int y = -1; y <= 1; ++y)
             for (int z = -1; z <= 1; ++z) {
@@ -57,30 +88,13 @@ TEST(LightSweepSlow, LightingAtTheAxesFollowsTheReferenceUnderOneNarrowLightFrom
                              .dump();
                 }
                 const std::string where = "light (" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")";
-                const auto f = run_coif("reference --lights '" + lights.string() + "' --max-depth 1 --no-shadows --spp 64" + size +
-                                        " -o '" + (dir / "f.exr").string() + "'");
-                ASSERT_EQ(f.exit_code, 0) << where << ": " << f.err;
-                const auto r = run_coif("render --env '" + lights.string() + "' --params '" + (dir / "p.json").string() + "'" + size +
-                                        " -o '" + (dir / "r.exr").string() + "'");
-                ASSERT_EQ(r.exit_code, 0) << where << ": " << r.err;
-                const auto c = run_coif("compare '" + (dir / "f.exr").string() + "' '" + (dir / "r.exr").string() + "' --json");
-                ASSERT_EQ(c.exit_code, 0) << where << ": " << c.err;
-                const auto ratio = nlohmann::json::parse(c.out)["appearance"]["radiance_ratio"];
-                std::printf("%s: %.3f %.3f %.3f\n", where.c_str(), ratio[0].get<double>(), ratio[1].get<double>(),
-                            ratio[2].get<double>());
-                for (int ch = 0; ch < 3; ++ch) {
-                    const double v = ratio[ch].get<double>();
-                    lo = std::min(lo, v);
-                    hi = std::max(hi, v);
-                    ++ratios;
-                    if (v >= 0.8 && v <= 1.25) ++in_band;
-                    EXPECT_GE(v, 0.75) << where << ", channel " << ch;
-                    EXPECT_LE(v, 1.45) << where << ", channel " << ch;
-                }
+                sweep_case(dir, "--lights '" + lights.string() + "' --max-depth 1 --no-shadows --spp 64",
+                           "--env '" + lights.string() + "' --params '" + (dir / "p.json").string() + "'", where, 0.75, 1.45,
+                           t);
             }
-    std::printf("%d of %d channel ratios in [0.8, 1.25]; range %.3f - %.3f\n", in_band, ratios, lo, hi);
-    EXPECT_EQ(ratios, 78);
-    EXPECT_GE(in_band, 70);
+    t.print("single lights");
+    EXPECT_EQ(t.ratios, 78);
+    EXPECT_GE(t.in_band, 70);
     fs::remove_all(dir);
 }
 
@@ -88,7 +102,7 @@ TEST(LightSweepSlow, LightingAtTheAxesFollowsTheReferenceUnderOneNarrowLightFrom
 // against the full reference, under the lights of every map in ../shared/data (40 SRBF lights each, `coif env fit`),
 // each turned about +y by 0°, 90°, 180° and 270° (`--rotate-lights` on both renderers), and from a ring of views
 // (azimuth every 45° at elevations −20°, 10° and 40°) under the courtyard's lights: issue 16's sweeps 2 to 4. About
-// 5 minutes on 2 cores.
+// 4 minutes on 2 cores.
 //
 // Tolerances. The issue's band is [0.8, 1.25] per channel. Measured (docs/quality.md, "The sweeps as tests"): 46 of the
 // 48 channel ratios of the maps in it, all in 0.87–1.46 (out: the courtyard turned 270°, 1.46 / 1.33 in red and green,
@@ -109,33 +123,10 @@ TEST(LightSweepSlow, TheFullModelFollowsTheReferenceUnderEveryMapTurnedAndFromAR
         std::ofstream p(dir / "p.json");
         p << R"({"lod_pixels": 0})";  // full meshes, as the single-light sweep above says why
     }
-    const std::string size = " --width 96 --height 64 --background 0 0 0";
-    struct Tally {
-        int in_band = 0, ratios = 0;
-        double lo = 1e9, hi = 0;
-    };
     // One case: the same lights (and `how`: a rotation or a view) given to both renderers.
     const auto check = [&](const fs::path& lights, const std::string& how, const std::string& where, Tally& t) {
-        const auto f = run_coif("reference --lights '" + lights.string() + "'" + how + " --spp 64" + size + " -o '" +
-                                (dir / "f.exr").string() + "'");
-        ASSERT_EQ(f.exit_code, 0) << where << ": " << f.err;
-        const auto r = run_coif("render --env '" + lights.string() + "'" + how + " --params '" + (dir / "p.json").string() +
-                                "'" + size + " -o '" + (dir / "r.exr").string() + "'");
-        ASSERT_EQ(r.exit_code, 0) << where << ": " << r.err;
-        const auto c = run_coif("compare '" + (dir / "f.exr").string() + "' '" + (dir / "r.exr").string() + "' --json");
-        ASSERT_EQ(c.exit_code, 0) << where << ": " << c.err;
-        const auto ratio = nlohmann::json::parse(c.out)["appearance"]["radiance_ratio"];
-        std::printf("%s: %.3f %.3f %.3f\n", where.c_str(), ratio[0].get<double>(), ratio[1].get<double>(),
-                    ratio[2].get<double>());
-        for (int ch = 0; ch < 3; ++ch) {
-            const double v = ratio[ch].get<double>();
-            t.lo = std::min(t.lo, v);
-            t.hi = std::max(t.hi, v);
-            ++t.ratios;
-            if (v >= 0.8 && v <= 1.25) ++t.in_band;
-            EXPECT_GE(v, 0.7) << where << ", channel " << ch;
-            EXPECT_LE(v, 1.6) << where << ", channel " << ch;
-        }
+        sweep_case(dir, "--lights '" + lights.string() + "'" + how + " --spp 64",
+                   "--env '" + lights.string() + "'" + how + " --params '" + (dir / "p.json").string() + "'", where, 0.7, 1.6, t);
     };
     Tally turned, ring;
     for (size_t m = 0; m < maps.size(); ++m) {
@@ -150,10 +141,8 @@ TEST(LightSweepSlow, TheFullModelFollowsTheReferenceUnderEveryMapTurnedAndFromAR
         for (int elevation : {-20, 10, 40})
             check(dir / "courtyard.json", " --azimuth " + std::to_string(azimuth) + " --elevation " + std::to_string(elevation),
                   "view (" + std::to_string(azimuth) + "°, " + std::to_string(elevation) + "°)", ring);
-    std::printf("maps turned: %d of %d channel ratios in [0.8, 1.25]; range %.3f - %.3f\n", turned.in_band, turned.ratios,
-                turned.lo, turned.hi);
-    std::printf("ring of views: %d of %d channel ratios in [0.8, 1.25]; range %.3f - %.3f\n", ring.in_band, ring.ratios,
-                ring.lo, ring.hi);
+    turned.print("maps turned");
+    ring.print("ring of views");
     EXPECT_EQ(turned.ratios, 48);
     EXPECT_EQ(ring.ratios, 72);
     EXPECT_GE(turned.in_band, 45);
