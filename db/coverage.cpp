@@ -44,9 +44,6 @@ std::vector<float> held_out_sector_features(const DbParams& params, std::size_t 
 
 namespace {
 
-// The raw column of a sector's mean density ρ̄ (models/sector_features.h): empty sectors and the density match read it.
-constexpr int kMeanDensityColumn = kRichColumn0 + kMeanDensity;
-
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // The q-quantile of sorted values (nearest rank, as error_stats).

@@ -23,6 +23,7 @@ inline constexpr int kShapeColumns = 2;
 inline constexpr int kRawFeatureCount = kPaperColumns + kRichFeatureCount + kShapeColumns;
 inline constexpr int kRichColumn0 = kPaperColumns;
 inline constexpr int kShapeColumn0 = kPaperColumns + kRichFeatureCount;
+inline constexpr int kMeanDensityColumn = kRichColumn0 + kMeanDensity;  // a sector's mean density ρ̄ among the raw columns
 using RawFeatures = std::array<float, kRawFeatureCount>;
 
 RawFeatures raw_sector_features(const SectorDensity& feature_grid, double depth_over_lambda, double width_over_depth);

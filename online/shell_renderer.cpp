@@ -731,4 +731,14 @@ FragmentListStats ShellRenderer::fragment_list_stats() const {
     return lists ? lists->stats() : FragmentListStats{};
 }
 
+Image render_aov(ShellRenderer& renderer, const Camera& camera, const ScatteringAov& aov) {
+    Image image = renderer.render(camera, aov.with);
+    if (aov.without) {
+        const Image less = renderer.render(camera, *aov.without);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i)
+            if (i % image.channels != 3) image.pixels[i] -= less.pixels[i];
+    }
+    return image;
+}
+
 }  // namespace coif::gl

@@ -239,4 +239,8 @@ private:
     glm::vec3 bounds_min_{0}, bounds_max_{0};
 };
 
+// One scattering term of `coif render --aovs` (shells/shell_settings.h scattering_aovs): the render of aov.with, less
+// that of aov.without where it has one, in RGB (the two have the same coverage, so alpha is kept).
+Image render_aov(ShellRenderer& renderer, const Camera& camera, const ScatteringAov& aov);
+
 }  // namespace coif::gl

@@ -323,15 +323,8 @@ void add_render(CLI::App& root) {
                 coif::write_image(path, image, aw);
                 std::fprintf(stderr, "AOV %-8s -> %s\n", name.c_str(), path.c_str());
             };
-            for (const coif::gl::ScatteringAov& a : coif::gl::scattering_aovs(settings)) {  // the scattering terms
-                coif::Image image = renderer.render(camera, a.with);
-                if (a.without) {
-                    const coif::Image less = renderer.render(camera, *a.without);
-                    for (std::size_t i = 0; i < image.pixels.size(); ++i)
-                        if (i % image.channels != 3) image.pixels[i] -= less.pixels[i];
-                }
-                write_aov(a.name, image);
-            }
+            for (const coif::gl::ScatteringAov& a : coif::gl::scattering_aovs(settings))  // the scattering terms
+                write_aov(a.name, coif::gl::render_aov(renderer, camera, a));
             coif::gl::ShellSettings shadow = settings;  // where light reaches
             shadow.background = glm::vec3(0.0f);
             shadow.debug = 4;

@@ -175,7 +175,7 @@ inline bool draws_single_sample(Compositing c) {
 int supersampling(const ShellSettings& settings);
 
 // `coif render --aovs`: each scattering term of `settings`' image alone, over black. A term is the render of `with`
-// less that of `without` where it has one (the same renderer and view; RGB only, the coverage is the same): each lobe
+// less that of `without` where it has one (online/shell_renderer.h render_aov; the coverage is the same): each lobe
 // is its single scattering alone, and `multiple` is all that multiple scattering adds to the lobes (the dual
 // scattering and the own cluster's forward-scattered light, which scatters the lobes' light: own_cluster_variant).
 // So the terms add up to the image over black, up to each lobe's own max(·, 0) clamp.

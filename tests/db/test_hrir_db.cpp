@@ -192,9 +192,10 @@ TEST(HrirDb, CoverageOfADatabasesOwnSectorsMatchesTheirDensity) {
     const auto db = coif::HrirDatabase::open(dir / "a.db");
     const std::vector<float> held = coif::held_out_sector_features(db.params(), 4);
     const std::span<const float> own = db.all_features();
-    const coif::CoverageReport r = coif::database_coverage(db, own, held, coif::CoverageOptions{});
+    const coif::CoverageOptions options;
+    const coif::CoverageReport r = coif::database_coverage(db, own, held, options);
     std::size_t nonempty = 0;
-    for (std::size_t i = 0; i < db.size(); ++i) nonempty += db.features(i)[coif::kRichColumn0 + coif::kMeanDensity] >= 1e-3 ? 1 : 0;
+    for (std::size_t i = 0; i < db.size(); ++i) nonempty += db.features(i)[coif::kMeanDensityColumn] >= options.empty_density ? 1 : 0;
     ASSERT_GT(nonempty, 0u);
     EXPECT_EQ(r.density_ratio.sectors, nonempty);
     EXPECT_DOUBLE_EQ(r.density_ratio.p10, 1.0);
@@ -203,8 +204,8 @@ TEST(HrirDb, CoverageOfADatabasesOwnSectorsMatchesTheirDensity) {
     EXPECT_DOUBLE_EQ(r.density_ratio.outside_half_to_double, 0.0);
 
     std::vector<float> empty(own.begin(), own.end());
-    for (std::size_t i = 0; i < db.size(); ++i) empty[i * coif::kRawFeatureCount + coif::kRichColumn0 + coif::kMeanDensity] = 0.0f;
-    const coif::CoverageReport e = coif::database_coverage(db, empty, held, coif::CoverageOptions{});
+    for (std::size_t i = 0; i < db.size(); ++i) empty[i * coif::kRawFeatureCount + coif::kMeanDensityColumn] = 0.0f;
+    const coif::CoverageReport e = coif::database_coverage(db, empty, held, options);
     EXPECT_EQ(e.density_ratio.sectors, 0u);
     EXPECT_EQ(e.density_ratio.median, 0.0);
 }

@@ -318,10 +318,9 @@ TEST(ShellRenderer, ScatteringAovsAddUpToTheImage) {
     const std::vector<gl::ScatteringAov> aovs = gl::scattering_aovs(s);
     ASSERT_EQ(aovs.size(), shading::kLobes.size() + 1);
     for (const gl::ScatteringAov& a : aovs) {
-        const Image part = renderer.render(camera, a.with);
-        const Image less = a.without ? renderer.render(camera, *a.without) : Image{};
+        const Image part = gl::render_aov(renderer, camera, a);
         for (std::size_t i = 0; i < sum.pixels.size(); ++i)
-            if (i % 4 != 3) sum.pixels[i] += part.pixels[i] - (a.without ? less.pixels[i] : 0.0f);
+            if (i % 4 != 3) sum.pixels[i] += part.pixels[i];
     }
     // The lobes alone draw no multiple scattering, the own cluster's forward-scattered light included (it scatters the
     // lobes' light): the sum of the lobes is the image with multiple scattering off.
