@@ -3,7 +3,6 @@
 // lighting-only cases (sparse hair and a single strand, single scattering), with both times and their
 // ratio, and the reference's own noise floor (two seeds). Both renderers always see the same SRBF lights
 // (or the map and its fit) and the same hair parameters.
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,6 +28,7 @@
 #include "tools/compare_report.h"
 #include "tools/reference_options.h"
 #include "tools/scene_options.h"
+#include "tools/subprocess.h"
 
 namespace {
 
@@ -60,52 +60,9 @@ struct QualityOptions {
     bool json = false;
 };
 
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string self_exe() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw coif::Error::parameter("coif bench quality", "cannot find the coif executable (/proc/self/exe)");
-    return p.string();
-}
-
-struct RunTimes {
-    double wall = 0, cpu = 0;
-};
-
-double children_cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_CHILDREN, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Runs `coif <args>`; throws coif::Error with the tail of its stderr on failure.
-RunTimes run_coif(const std::string& args, const fs::path& log) {
-    const double cpu0 = children_cpu_seconds();
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::string cmd = quote(self_exe()) + " " + args + " >" + quote(log.string()) + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    RunTimes t;
-    t.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    t.cpu = children_cpu_seconds() - cpu0;
-    if (status != 0) {
-        std::string text = read_text(log);
-        if (text.size() > 600) text = "..." + text.substr(text.size() - 600);
-        throw coif::Error(log, "command `coif " + args + "`", "failed:\n" + text);
-    }
-    return t;
-}
+using coif::cli::RunTimes;
+using coif::cli::run_self;
+std::string quote(const std::string& s) { return coif::cli::shell_quote(s); }
 
 // Which renderer a row measures (docs/quality.md says what each attributes).
 enum class Renderer {
@@ -376,12 +333,12 @@ void add_bench_quality(CLI::App& root) {
             if (ref_it == references.end()) {
                 ReferenceRun run;
                 run.image = dir / (stem + "_reference.exr");
-                run.times = run_coif("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed) + " -o " +
+                run.times = run_self("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed) + " -o " +
                                          quote(run.image.string()),
                                      dir / (stem + "_reference.log"));
                 if (o->convergence) {
                     const fs::path second = dir / (stem + "_reference_seed2.exr");
-                    run_coif("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed + 1) + " -o " + quote(second.string()),
+                    run_self("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed + 1) + " -o " + quote(second.string()),
                              dir / (stem + "_reference_seed2.log"));
                     const coif::Image a = coif::read_image(run.image), b = coif::read_image(second);
                     if (sc.lighting_only) {
@@ -415,14 +372,14 @@ void add_bench_quality(CLI::App& root) {
                 std::string args = render_args;
                 if (!sc.fit_model.empty()) {
                     const fs::path style = dir / (stem + "_style.json");
-                    run.fit_seconds = run_coif("style import " + quote(sc.fit_model) + " --clusters " + std::to_string(o->clusters) +
+                    run.fit_seconds = run_self("style import " + quote(sc.fit_model) + " --clusters " + std::to_string(o->clusters) +
                                                    " -o " + quote(style.string()),
                                                dir / (stem + "_style.log"))
                                           .wall;
                     args += " --style " + quote(style.string());
                 }
                 run.image = dir / (stem + "_render.exr");
-                run.times = run_coif("render" + args + " -o " + quote(run.image.string()), dir / (stem + "_render.log"));
+                run.times = run_self("render" + args + " -o " + quote(run.image.string()), dir / (stem + "_render.log"));
                 render_it = renders.emplace(render_key, run).first;
             }
             const RenderRun& render_run = render_it->second;

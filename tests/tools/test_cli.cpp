@@ -1,4 +1,5 @@
 // The coif command as users meet it: help, exit codes, errors on stderr, no partial output files.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <gmock/gmock.h>
@@ -714,6 +715,74 @@ TEST(Cli, BenchShadowsTowardALightCountsFromTheFibresTheCameraSees) {
     EXPECT_EQ(zero.exit_code, 1);
     EXPECT_THAT(zero.err, HasSubstr("--light"));
     EXPECT_EQ(run_coif("bench shadows --light 1 2").exit_code, 2);
+}
+
+TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
+    // coif bench sweep: each case is `coif reference` and `coif render` with the same lights, compared as `coif compare`
+    // compares them. One case is run by hand here and must give the bench's figures exactly (the same seed, the same
+    // deterministic render); the set's tally must add up its cases; --references must reuse a reference for other shell
+    // parameters (the reference reads only the fibre's keys) and make a new one for other fibre keys.
+    const fs::path dir = test::scratch_dir("bench-sweep");
+    const fs::path refs = dir / "refs";
+    {
+        std::ofstream(dir / "full.json") << R"({"lod_pixels": 0})";
+        std::ofstream(dir / "single.json") << R"({"lod_pixels": 0, "multiple": false})";
+        std::ofstream(dir / "eta.json") << R"({"lod_pixels": 0, "eta": 1.6})";
+        std::ofstream(dir / "bad.json") << R"({"lod_pixels": -3})";
+        std::ofstream(dir / "light.json") << nlohmann::json{
+            {"format", "coif-srbf-lights"}, {"version", 1}, {"lights", {{{"L", {300, 300, 300}}, {"omega", {0, 0, 1}}, {"lambda", 0.1}}}}}.dump();
+    }
+    const std::string common = " --spp 4 --references '" + refs.string() + "' --json";
+    const auto count_refs = [&] { return std::distance(fs::directory_iterator(refs), fs::directory_iterator{}); };
+    const auto r = run_coif("bench sweep --case 'light 0 0 1' --case 'light -1 0 0' --params '" + (dir / "full.json").string() + "'" + common);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["cases"].size(), 2u);
+    EXPECT_EQ(j["cases"][0]["name"], "light 0 0 1");
+    EXPECT_EQ(count_refs(), 2);
+    int in_band = 0;
+    for (const auto& c : j["cases"])
+        for (const auto& v : c["radiance_ratio"]) {
+            EXPECT_TRUE(std::isfinite(v.get<double>()) && v.get<double>() > 0);
+            if (v.get<double>() >= 0.8 && v.get<double>() <= 1.25) ++in_band;
+        }
+    EXPECT_EQ(j["sets"]["lights"]["ratios"], 6);
+    EXPECT_EQ(j["sets"]["lights"]["in_band"], in_band);
+
+    // The same case by hand.
+    const std::string size = " --width 96 --height 64 --background 0 0 0 --params '" + (dir / "full.json").string() + "'";
+    ASSERT_EQ(run_coif("reference --lights '" + (dir / "light.json").string() + "'" + size + " --spp 4 --max-depth 10 -o '" +
+                       (dir / "f.exr").string() + "'").exit_code, 0);
+    ASSERT_EQ(run_coif("render --env '" + (dir / "light.json").string() + "'" + size + " -o '" + (dir / "r.exr").string() + "'").exit_code, 0);
+    const auto c = run_coif("compare '" + (dir / "f.exr").string() + "' '" + (dir / "r.exr").string() + "' --json");
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    const auto by_hand = nlohmann::json::parse(c.out)["appearance"];
+    for (int ch = 0; ch < 3; ++ch)
+        EXPECT_NEAR(j["cases"][0]["radiance_ratio"][ch].get<double>(), by_hand["radiance_ratio"][ch].get<double>(), 1e-12) << ch;
+    EXPECT_NEAR(j["cases"][0]["blurred_psnr_db"].get<double>(), by_hand["blurred_psnr_db"].get<double>(), 1e-9);
+
+    // Other shell parameters reuse the references; another fibre makes its own.
+    const auto single = run_coif("bench sweep --case 'light 0 0 1' --params '" + (dir / "single.json").string() + "'" + common);
+    ASSERT_EQ(single.exit_code, 0) << single.err;
+    EXPECT_EQ(count_refs(), 2);
+    const auto again = run_coif("bench sweep --case 'light 0 0 1' --params '" + (dir / "full.json").string() + "'" + common);
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(nlohmann::json::parse(again.out)["cases"][0]["radiance_ratio"], j["cases"][0]["radiance_ratio"]);
+    ASSERT_EQ(run_coif("bench sweep --case 'light 0 0 1' --params '" + (dir / "eta.json").string() + "'" + common).exit_code, 0);
+    EXPECT_EQ(count_refs(), 3);
+
+    // Bad input: a clear error before any rendering.
+    const auto unknown = run_coif("bench sweep --case 'light 2 0 0'");
+    EXPECT_EQ(unknown.exit_code, 1);
+    EXPECT_THAT(unknown.err, HasSubstr("--case"));
+    EXPECT_EQ(run_coif("bench sweep --set planets").exit_code, 2);
+    const auto no_data = run_coif("bench sweep --set maps --data '" + (dir / "none").string() + "'");
+    EXPECT_EQ(no_data.exit_code, 1);
+    EXPECT_THAT(no_data.err, HasSubstr("none"));
+    const auto bad = run_coif("bench sweep --case 'light 0 0 1' --params '" + (dir / "bad.json").string() + "'");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_THAT(bad.err, HasSubstr("bad.json"));
+    fs::remove_all(dir);
 }
 
 TEST(Cli, BenchEditTimesAnEditThatKeepsWhatItDidNotChange) {
