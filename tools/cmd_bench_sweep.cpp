@@ -70,7 +70,9 @@ std::vector<std::pair<std::string, fs::path>> maps_in(const fs::path& data) {
         if (name.rfind(prefix, 0) == 0) name = name.substr(prefix.size());
         maps.emplace_back(name, e.path());
     }
+    // One map per name: its .exr where a folder holds both (the shared data's maps come as both).
     std::sort(maps.begin(), maps.end());
+    maps.erase(std::unique(maps.begin(), maps.end(), [](const auto& a, const auto& b) { return a.first == b.first; }), maps.end());
     if (maps.empty()) throw coif::Error(data, "option --data", "holds no .exr or .hdr map");
     return maps;
 }
@@ -169,7 +171,8 @@ void add_bench_sweep(CLI::App& root) {
         "ratios lie in the issue's band [0.8, 1.25], the mean |ln ratio|, the standard deviation of ln ratio (what one\n"
         "overall factor cannot remove), the blurred PSNR's mean and worst, and the mean FLIP. The references do not\n"
         "depend on the renderer's settings: --references keeps them in a folder and reuses them (named by a hash of\n"
-        "their arguments), so that a second run with other --params renders the shells alone. Both renderers run as\n"
+        "the lights, the fibre's parameters, the view, the size and the samples), so that a second run with other\n"
+        "--params for the shells renders the shells alone. Both renderers run as\n"
         "subprocesses of this coif. docs/quality.md holds the figures.");
     cmd->add_option("--set", o->sets, "Sets to run: lights, maps, ring (default lights)")->check(CLI::IsMember({"lights", "maps", "ring"}));
     cmd->add_option("--params", o->params, "Parameters file for both renderers, as `coif render --params` reads it (default: the renderer's defaults; {\"lod_pixels\": 0} draws full meshes, as docs/quality.md's sweeps do)");
