@@ -3,7 +3,6 @@
 // lighting-only cases (sparse hair and a single strand, single scattering), with both times and their
 // ratio, and the reference's own noise floor (two seeds). Both renderers always see the same SRBF lights
 // (or the map and its fit) and the same hair parameters.
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -238,25 +237,9 @@ void add_bench_quality(CLI::App& root) {
         (void)o->reference.environment();
         const coif::ReferenceSettings settings = o->reference.reference_settings();
 
-        fs::path dir;
-        const bool temporary = o->keep.empty();
-        if (temporary) {
-            dir = fs::temp_directory_path() / ("coif-bench-quality-" + std::to_string(::getpid()));
-            fs::create_directories(dir);
-        } else {
-            dir = o->keep;
-            std::error_code ec;
-            fs::create_directories(dir, ec);
-            if (!fs::is_directory(dir)) throw coif::Error(dir, "option --keep", "cannot create this folder");
-        }
-        struct Cleanup {
-            fs::path dir;
-            bool active;
-            ~Cleanup() {
-                std::error_code ec;
-                if (active) fs::remove_all(dir, ec);
-            }
-        } cleanup{dir, temporary};
+        const coif::cli::WorkFolder work(o->keep, "coif-bench-quality-");
+        const fs::path& dir = work.path();
+        const bool temporary = work.temporary();
 
         const BenchLighting lighting = bench_lighting(o->reference, dir);
         const fs::path params_full = dir / "params.json", params_single = dir / "params_single_scattering.json";

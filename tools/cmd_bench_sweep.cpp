@@ -2,8 +2,6 @@
 // reference` under one narrow SRBF light from 26 directions, under every map of a folder turned about +y, and from a
 // ring of views, each case compared by the appearance metrics (docs/quality.md). The sweeps that docs/quality.md
 // measures item 1 by, as one command.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -196,20 +194,10 @@ void add_bench_sweep(CLI::App& root) {
     cmd->callback([o] {
         // Clear errors before minutes of rendering.
         if (!o->db.empty() && !fs::is_regular_file(o->db)) throw coif::Error(o->db, "option --db", "is not a file");
-        fs::path dir;
-        const bool temporary = o->keep.empty();
-        dir = temporary ? fs::temp_directory_path() / ("coif-bench-sweep-" + std::to_string(::getpid())) : fs::path(o->keep);
+        const coif::cli::WorkFolder work(o->keep, "coif-bench-sweep-");
+        const fs::path& dir = work.path();
+        const bool temporary = work.temporary();
         std::error_code ec;
-        fs::create_directories(dir, ec);
-        if (!fs::is_directory(dir)) throw coif::Error(dir, temporary ? "temporary folder" : "option --keep", "cannot create this folder");
-        struct Cleanup {
-            fs::path dir;
-            bool active;
-            ~Cleanup() {
-                std::error_code ec;
-                if (active) fs::remove_all(dir, ec);
-            }
-        } cleanup{dir, temporary};
         if (!o->references.empty()) {
             fs::create_directories(o->references, ec);
             if (!fs::is_directory(o->references)) throw coif::Error(o->references, "option --references", "cannot create this folder");

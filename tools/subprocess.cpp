@@ -1,6 +1,7 @@
 #include "tools/subprocess.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -56,6 +57,18 @@ RunTimes run_self(const std::string& args, const fs::path& log) {
         throw Error(log, "command `coif " + args + "`", "failed:\n" + text);
     }
     return t;
+}
+
+WorkFolder::WorkFolder(const std::string& keep, const std::string& prefix) : temporary_(keep.empty()) {
+    path_ = temporary_ ? fs::temp_directory_path() / (prefix + std::to_string(::getpid())) : fs::path(keep);
+    std::error_code ec;
+    fs::create_directories(path_, ec);
+    if (!fs::is_directory(path_)) throw Error(path_, temporary_ ? "temporary folder" : "option --keep", "cannot create this folder");
+}
+
+WorkFolder::~WorkFolder() {
+    std::error_code ec;
+    if (temporary_) fs::remove_all(path_, ec);
 }
 
 }  // namespace coif::cli

@@ -21,4 +21,20 @@ struct RunTimes {
 // the command fails.
 RunTimes run_self(const std::string& args, const std::filesystem::path& log);
 
+// The folder a benchmark works in: `keep` when given (created; kept), else a new temporary folder named `prefix` and the
+// process id, removed with this object. Throws coif::Error naming the folder when it cannot be made.
+class WorkFolder {
+public:
+    WorkFolder(const std::string& keep, const std::string& prefix);
+    ~WorkFolder();
+    WorkFolder(const WorkFolder&) = delete;
+    WorkFolder& operator=(const WorkFolder&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    bool temporary() const { return temporary_; }
+
+private:
+    std::filesystem::path path_;
+    bool temporary_;
+};
+
 }  // namespace coif::cli
