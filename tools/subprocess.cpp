@@ -32,7 +32,12 @@ std::string self_exe() {
     std::error_code ec;
     const fs::path p = fs::read_symlink("/proc/self/exe", ec);
     if (ec) throw Error::parameter("coif", "cannot find the coif executable (/proc/self/exe)");
-    return p.string();
+    // A coif rebuilt while it runs reads as "PATH (deleted)": the new one at PATH runs the rest.
+    std::string path = p.string();
+    const std::string deleted = " (deleted)";
+    if (path.size() > deleted.size() && path.compare(path.size() - deleted.size(), deleted.size(), deleted) == 0)
+        path.resize(path.size() - deleted.size());
+    return path;
 }
 
 double children_cpu_seconds() {
