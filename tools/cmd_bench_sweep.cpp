@@ -12,12 +12,15 @@
 #include <numeric>
 #include <set>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 #include "models/core/error.h"
 #include "models/core/image.h"
 #include "models/core/image_metrics.h"
 #include "models/core/progress.h"
 #include "offline/srbf_lights.h"
+#include "shaders/hair_parameters.h"
 #include "online/shells/shell_settings.h"
 #include "tools/cli.h"
 #include "tools/subprocess.h"
@@ -170,8 +173,8 @@ void add_bench_sweep(CLI::App& root) {
         "overall factor cannot remove), the blurred PSNR's mean and worst, and the mean FLIP. The references do not\n"
         "depend on the renderer's settings: --references keeps them in a folder and reuses them (named by a hash of\n"
         "the lights, the fibre's parameters, the view, the size and the samples), so that a second run with other\n"
-        "--params for the shells renders the shells alone. Both renderers run as\n"
-        "subprocesses of this coif. docs/quality.md holds the figures.");
+        "--params for the shells renders the shells alone. Both renderers run as subprocesses of this coif.\n"
+        "docs/quality.md holds the figures.");
     cmd->add_option("--set", o->sets, "Sets to run: lights, maps, ring (default lights)")->check(CLI::IsMember({"lights", "maps", "ring"}));
     cmd->add_option("--params", o->params, "Parameters file for both renderers, as `coif render --params` reads it (default: the renderer's defaults; {\"lod_pixels\": 0} draws full meshes, as docs/quality.md's sweeps do)");
     cmd->add_option("--db", o->db, "HRIR database for coif render (default: its cached default database)");
@@ -192,7 +195,27 @@ void add_bench_sweep(CLI::App& root) {
                         "  coif bench sweep --set maps --set ring --params full.json --references refs/\n"
                         "  coif bench sweep --max-depth 1 --params single.json --case \"light -1 0 0\"   # {\"lod_pixels\": 0, \"multiple\": false}");
     cmd->callback([o] {
-        // Clear errors before minutes of rendering.
+        // Clear errors before minutes of rendering. What of the parameters the reference reads: the fibre's keys and
+        // fiber_radius (tools/reference_options.cpp).
+        std::string params_key;
+        if (!o->params.empty()) {
+            const coif::gl::ShellSettings p = coif::gl::read_shell_settings(o->params);
+            const auto add = [&](float v) {
+                char text[32];
+                std::snprintf(text, sizeof text, " %.9g", v);
+                params_key += text;
+            };
+            for (const auto& field : coif::shading::kHairParamsFields)
+                std::visit(
+                    [&](auto member) {
+                        if constexpr (std::is_floating_point_v<std::decay_t<decltype(p.hair.fibre.*member)>>)
+                            add(p.hair.fibre.*member);
+                        else
+                            for (int c = 0; c < 3; ++c) add((p.hair.fibre.*member)[c]);
+                    },
+                    field.member);
+            add(p.fiber_radius);
+        }
         if (!o->db.empty() && !fs::is_regular_file(o->db)) throw coif::Error(o->db, "option --db", "is not a file");
         const coif::cli::WorkFolder work(o->keep, "coif-bench-sweep-");
         const fs::path& dir = work.path();
@@ -232,13 +255,6 @@ void add_bench_sweep(CLI::App& root) {
         }
         const std::string size = " --width " + std::to_string(o->width) + " --height " + std::to_string(o->height) + " --background 0 0 0";
         const std::string params = o->params.empty() ? std::string() : " --params " + shell_quote(o->params);
-        // What of the parameters the reference reads: the fibre's keys and fiber_radius (tools/reference_options.cpp).
-        std::string params_key;
-        if (!o->params.empty()) {
-            const coif::gl::ShellSettings p = coif::gl::read_shell_settings(o->params);
-            params_key.assign(reinterpret_cast<const char*>(&p.hair.fibre), sizeof p.hair.fibre);
-            params_key += " " + std::to_string(p.fiber_radius);
-        }
         std::vector<Row> rows;
         coif::Progress progress("bench sweep", cases.size());
         for (std::size_t i = 0; i < cases.size(); ++i) {
