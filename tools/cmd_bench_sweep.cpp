@@ -33,7 +33,7 @@ using coif::cli::shell_quote;
 
 // The band for each channel's radiance ratio, render / reference.
 constexpr double kBandLow = 0.8, kBandHigh = 1.25;
-// The narrow light of the single-light sweep: λ = 0.1, L = 300 (tests/tools/test_light_sweep.cpp lights the same way).
+// The narrow light of the single-light sweep: λ = 0.1, L = 300 (docs/quality.md, "The fibres' tangents about the axis").
 constexpr float kNarrowLambda = 0.1f, kNarrowRadiance = 300.0f;
 const char* const kSets[] = {"lights", "maps", "ring"};
 
