@@ -61,7 +61,7 @@ struct QualityOptions {
 
 using coif::cli::RunTimes;
 using coif::cli::run_self;
-std::string quote(const std::string& s) { return coif::cli::shell_quote(s); }
+using coif::cli::shell_quote;
 
 // Which renderer a row measures (docs/quality.md says what each attributes).
 enum class Renderer {
@@ -159,7 +159,7 @@ BenchLighting bench_lighting(const coif::cli::ReferenceCliOptions& ref, const fs
     BenchLighting b;
     if (!ref.lights.empty()) {
         b.render = b.single_render = ref.lights;
-        b.reference = b.single_reference = " --lights " + quote(ref.lights);
+        b.reference = b.single_reference = " --lights " + shell_quote(ref.lights);
         b.words = "SRBF lights " + ref.lights;
     } else if (!ref.env.empty()) {
         // coif render would fit the map itself; fitting once here gives every row the same lights and lets the
@@ -170,8 +170,8 @@ BenchLighting bench_lighting(const coif::cli::ReferenceCliOptions& ref, const fs
         const fs::path path = dir / "fitted_lights.json";
         coif::write_srbf_lights(path, set);
         b.render = b.single_render = path.string();
-        b.reference = " --env " + quote(ref.env);
-        b.single_reference = " --lights " + quote(path.string());
+        b.reference = " --env " + shell_quote(ref.env);
+        b.single_reference = " --lights " + shell_quote(path.string());
         b.words = "map " + ref.env + " (reference; coif render and the lighting-only rows: its 40 fitted SRBF lights)";
     } else if (ref.env_constant.size() == 3) {
         // A constant environment as one SRBF light of the broadest bandwidth: G_j varies by < 4e-4 over the sphere
@@ -189,7 +189,7 @@ BenchLighting bench_lighting(const coif::cli::ReferenceCliOptions& ref, const fs
         const fs::path path = dir / "default_lights.json";
         coif::write_file_atomic(path, bytes);
         b.render = b.single_render = path.string();
-        b.reference = b.single_reference = " --lights " + quote(path.string());
+        b.reference = b.single_reference = " --lights " + shell_quote(path.string());
         b.words = "the embedded default lights (40 SRBF lights, courtyard)";
     }
     return b;
@@ -286,7 +286,7 @@ void add_bench_quality(CLI::App& root) {
         char camera_args[256];
         std::snprintf(camera_args, sizeof camera_args, " --width %d --height %d --azimuth %.9g --elevation %.9g --fov %.9g", o->width,
                       o->height, o->azimuth_deg, o->elevation_deg, o->fov_deg);
-        const std::string params_arg = " --params " + quote(params_full.string());
+        const std::string params_arg = " --params " + shell_quote(params_full.string());
         std::ostringstream radius_arg;
         if (settings.fiber_radius > 0) radius_arg << " --radius " << settings.fiber_radius;
         std::ostringstream both_args;  // what both renderers are given alike: background, light rotation
@@ -302,7 +302,7 @@ void add_bench_quality(CLI::App& root) {
                         "ratio", "PSNR lin", "PSNR tm", "SSIM tm", "FLIP tm", "conv PSNR", "conv FLIP");
         for (const Scene& sc : scenes) {
             const std::string stem = std::to_string(rows.size());
-            const std::string strands_arg = sc.strands_arg.empty() ? std::string() : " --strands " + quote(sc.strands_arg);
+            const std::string strands_arg = sc.strands_arg.empty() ? std::string() : " --strands " + shell_quote(sc.strands_arg);
 
             // The reference (once per distinct set of arguments).
             std::ostringstream ref_args;
@@ -317,11 +317,11 @@ void add_bench_quality(CLI::App& root) {
                 ReferenceRun run;
                 run.image = dir / (stem + "_reference.exr");
                 run.times = run_self("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed) + " -o " +
-                                         quote(run.image.string()),
+                                         shell_quote(run.image.string()),
                                      dir / (stem + "_reference.log"));
                 if (o->convergence) {
                     const fs::path second = dir / (stem + "_reference_seed2.exr");
-                    run_self("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed + 1) + " -o " + quote(second.string()),
+                    run_self("reference" + ref_args.str() + " --seed " + std::to_string(settings.seed + 1) + " -o " + shell_quote(second.string()),
                              dir / (stem + "_reference_seed2.log"));
                     const coif::Image a = coif::read_image(run.image), b = coif::read_image(second);
                     if (sc.lighting_only) {
@@ -338,11 +338,11 @@ void add_bench_quality(CLI::App& root) {
             const ReferenceRun& ref_run = ref_it->second;
 
             // The render (once per distinct set of arguments).
-            std::string render_args = std::string(camera_args) + both_args.str() + " --env " + quote(sc.lighting_only ? lighting.single_render : lighting.render) +
-                                      " --params " + quote((sc.lighting_only ? params_single : params_full).string());
+            std::string render_args = std::string(camera_args) + both_args.str() + " --env " + shell_quote(sc.lighting_only ? lighting.single_render : lighting.render) +
+                                      " --params " + shell_quote((sc.lighting_only ? params_single : params_full).string());
             if (sc.renderer == Renderer::shells) {
-                if (!sc.fit_model.empty()) render_args += " --frame-strands " + quote(sc.fit_model);
-                if (!o->db.empty()) render_args += " --db " + quote(o->db);
+                if (!sc.fit_model.empty()) render_args += " --frame-strands " + shell_quote(sc.fit_model);
+                if (!o->db.empty()) render_args += " --db " + shell_quote(o->db);
             } else {
                 render_args += strands_arg + radius_arg.str();
                 if (sc.renderer == Renderer::lines_per_fragment) render_args += " --per-fragment";
@@ -355,14 +355,14 @@ void add_bench_quality(CLI::App& root) {
                 std::string args = render_args;
                 if (!sc.fit_model.empty()) {
                     const fs::path style = dir / (stem + "_style.json");
-                    run.fit_seconds = run_self("style import " + quote(sc.fit_model) + " --clusters " + std::to_string(o->clusters) +
-                                                   " -o " + quote(style.string()),
+                    run.fit_seconds = run_self("style import " + shell_quote(sc.fit_model) + " --clusters " + std::to_string(o->clusters) +
+                                                   " -o " + shell_quote(style.string()),
                                                dir / (stem + "_style.log"))
                                           .wall;
-                    args += " --style " + quote(style.string());
+                    args += " --style " + shell_quote(style.string());
                 }
                 run.image = dir / (stem + "_render.exr");
-                run.times = run_self("render" + args + " -o " + quote(run.image.string()), dir / (stem + "_render.log"));
+                run.times = run_self("render" + args + " -o " + shell_quote(run.image.string()), dir / (stem + "_render.log"));
                 render_it = renders.emplace(render_key, run).first;
             }
             const RenderRun& render_run = render_it->second;

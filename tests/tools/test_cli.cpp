@@ -734,7 +734,8 @@ TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
     }
     const std::string common = " --spp 4 --references '" + refs.string() + "' --json";
     const auto count_refs = [&] { return std::distance(fs::directory_iterator(refs), fs::directory_iterator{}); };
-    const auto r = run_coif("bench sweep --case 'light 0 0 1' --case 'light -1 0 0' --params '" + (dir / "full.json").string() + "'" + common);
+    const auto r = run_coif("bench sweep --case 'light 0 0 1' --case 'light -1 0 0' --params '" + (dir / "full.json").string() + "'" +
+                            common + " --keep '" + (dir / "keep").string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["cases"].size(), 2u);
@@ -747,6 +748,7 @@ TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
             if (v.get<double>() >= 0.8 && v.get<double>() <= 1.25) ++in_band;
         }
     EXPECT_EQ(j["sets"]["lights"]["ratios"], 6);
+    EXPECT_TRUE(fs::exists(dir / "keep" / "case1_render.exr"));  // --keep keeps the renders
     EXPECT_EQ(j["sets"]["lights"]["in_band"], in_band);
 
     // The same case by hand.
@@ -783,6 +785,28 @@ TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_THAT(bad.err, HasSubstr("bad.json"));
     fs::remove_all(dir);
+}
+
+TEST(Cli, BenchQualityRunsEverySceneAndRemovesItsTemporaryFolder) {
+    // coif bench quality runs coif reference and coif render per scene (tools/subprocess.h): the default style's shells
+    // and the three lighting-only rows, without the models (--data names no folder). The figures are the benchmark's to
+    // print (none is bounded here); what is checked is that every scene ran and was compared, and that the temporary
+    // folder is gone afterwards.
+    const auto temporaries = [] {
+        std::set<fs::path> found;
+        for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+            if (e.path().filename().string().rfind("coif-bench-quality-", 0) == 0) found.insert(e.path());
+        return found;
+    };
+    const std::set<fs::path> before = temporaries();
+    const auto r = run_coif("bench quality --no-fit --width 96 --height 64 --spp 4 --no-convergence --lighting-spp 8 --data '" +
+                            (fs::temp_directory_path() / "coif-no-such-folder").string() + "' --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["scenes"].size(), 4u);
+    EXPECT_EQ(j["scenes"][0]["renderer"], "SATF shells");
+    for (const auto& scene : j["scenes"]) EXPECT_TRUE(std::isfinite(scene["appearance"]["blurred_psnr_db"].get<double>()));
+    EXPECT_EQ(temporaries(), before);
 }
 
 TEST(Cli, BenchEditTimesAnEditThatKeepsWhatItDidNotChange) {
