@@ -630,15 +630,17 @@ TEST(Cli, BakedAssetRendersAsItsStyleAndDamagedAssetsAreRefused) {
     fs::remove_all(dir);
 }
 
+// The entries of the temporary folder whose names start with `prefix` (a benchmark's work folders).
+std::set<fs::path> temporary_folders(const std::string& prefix) {
+    std::set<fs::path> found;
+    for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+        if (e.path().filename().string().rfind(prefix, 0) == 0) found.insert(e.path());
+    return found;
+}
+
 TEST(Cli, BenchLoadTimesTheAssetBesideTheStyle) {
     // The figures vary; what is checked is that each phase is measured and the temporary asset is removed.
-    namespace fs = std::filesystem;
-    const auto temporaries = [] {
-        std::set<fs::path> found;
-        for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
-            if (e.path().filename().string().rfind("coif-bench-load-", 0) == 0) found.insert(e.path());
-        return found;
-    };
+    const auto temporaries = [] { return temporary_folders("coif-bench-load-"); };
     const std::set<fs::path> before = temporaries();
     const auto r = run_coif("bench load --repeats 2 --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -792,12 +794,7 @@ TEST(Cli, BenchQualityRunsEverySceneAndRemovesItsTemporaryFolder) {
     // and the three lighting-only rows, without the models (--data names no folder). The figures are the benchmark's to
     // print (none is bounded here); what is checked is that every scene ran and was compared, and that the temporary
     // folder is gone afterwards.
-    const auto temporaries = [] {
-        std::set<fs::path> found;
-        for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
-            if (e.path().filename().string().rfind("coif-bench-quality-", 0) == 0) found.insert(e.path());
-        return found;
-    };
+    const auto temporaries = [] { return temporary_folders("coif-bench-quality-"); };
     const std::set<fs::path> before = temporaries();
     const auto r = run_coif("bench quality --no-fit --width 96 --height 64 --spp 4 --no-convergence --lighting-spp 8 --data '" +
                             (fs::temp_directory_path() / "coif-no-such-folder").string() + "' --json");
