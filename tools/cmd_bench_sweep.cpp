@@ -50,6 +50,8 @@ struct Case {
     std::string set, name;
     fs::path lights;
     std::string how;
+    glm::ivec3 direction{0};  // lights: the narrow light's direction (unnormalised)
+    fs::path map;             // maps and ring: the map `lights` is fitted to
 };
 
 struct Row {
@@ -88,7 +90,7 @@ std::vector<Case> sweep_cases(const SweepOptions& o, const fs::path& dir) {
                     if (x == 0 && y == 0 && z == 0) continue;
                     const std::string name = "light " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z);
                     const fs::path file = dir / ("light_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z) + ".json");
-                    cases.push_back({"lights", name, file, ""});
+                    cases.push_back({"lights", name, file, "", glm::ivec3(x, y, z), {}});
                 }
     if (wants("maps") || wants("ring")) {
         const auto maps = maps_in(o.data);
@@ -96,7 +98,7 @@ std::vector<Case> sweep_cases(const SweepOptions& o, const fs::path& dir) {
             for (const auto& [name, path] : maps)
                 for (int turn = 0; turn < 360; turn += 90)
                     cases.push_back({"maps", name + " " + std::to_string(turn), dir / ("map_" + name + ".json"),
-                                     " --rotate-lights " + std::to_string(turn)});
+                                     " --rotate-lights " + std::to_string(turn), glm::ivec3(0), path});
         if (wants("ring")) {
             // The courtyard's lights (issue 16's ring), else the first map's.
             auto it = std::find_if(maps.begin(), maps.end(), [](const auto& m) { return m.first == "courtyard"; });
@@ -105,7 +107,8 @@ std::vector<Case> sweep_cases(const SweepOptions& o, const fs::path& dir) {
                 for (int elevation : {-20, 10, 40})
                     cases.push_back({"ring", "view " + std::to_string(azimuth) + " " + std::to_string(elevation),
                                      dir / ("map_" + it->first + ".json"),
-                                     " --azimuth " + std::to_string(azimuth) + " --elevation " + std::to_string(elevation)});
+                                     " --azimuth " + std::to_string(azimuth) + " --elevation " + std::to_string(elevation),
+                                     glm::ivec3(0), it->second});
         }
     }
     if (!o.cases.empty()) {
@@ -236,21 +239,15 @@ void add_bench_sweep(CLI::App& root) {
         for (const Case& c : cases) {
             if (written.count(c.lights)) continue;
             written.insert(c.lights);
-            if (c.set == "lights") {
-                int x = 0, y = 0, z = 0;
-                std::sscanf(c.name.c_str(), "light %d %d %d", &x, &y, &z);
+            if (c.map.empty()) {
                 coif::SrbfLightSet set;
-                set.lights.push_back({glm::vec3(kNarrowRadiance), glm::normalize(glm::vec3(x, y, z)), kNarrowLambda});
+                set.lights.push_back({glm::vec3(kNarrowRadiance), glm::normalize(glm::vec3(c.direction)), kNarrowLambda});
                 coif::write_srbf_lights(c.lights, set);
             } else {
-                const std::string name = c.lights.stem().string().substr(4);  // map_<name>
-                for (const auto& [map_name, path] : maps_in(o->data))
-                    if (map_name == name) {
-                        std::fprintf(stderr, "fitting %d SRBF lights to %s\n", o->map_lights, path.string().c_str());
-                        coif::cli::run_self("env fit " + shell_quote(path.string()) + " -n " + std::to_string(o->map_lights) + " -o " +
-                                                shell_quote(c.lights.string()),
-                                            dir / ("fit_" + name + ".log"));
-                    }
+                std::fprintf(stderr, "fitting %d SRBF lights to %s\n", o->map_lights, c.map.string().c_str());
+                coif::cli::run_self("env fit " + shell_quote(c.map.string()) + " -n " + std::to_string(o->map_lights) + " -o " +
+                                        shell_quote(c.lights.string()),
+                                    c.lights.parent_path() / ("fit_" + c.lights.stem().string() + ".log"));
             }
         }
         const std::string size = " --width " + std::to_string(o->width) + " --height " + std::to_string(o->height) + " --background 0 0 0";

@@ -8,6 +8,7 @@
 #include "offline/envmap.h"
 #include "offline/srbf_lights.h"
 #include "tools/scene_options.h"
+#include "tools/subprocess.h"
 
 namespace coif::cli {
 namespace {
@@ -18,12 +19,6 @@ glm::vec3 rgb(const std::vector<float>& v, const std::string& option) {
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(c[i])) throw Error::parameter("option " + option, "must be finite numbers");
     return c;
-}
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 }  // namespace
@@ -75,8 +70,8 @@ ReferenceSettings ReferenceCliOptions::reference_settings() const {
 
 std::string ReferenceCliOptions::lighting_args() const {
     std::ostringstream o;
-    if (!env.empty()) o << " --env " << quote(env);
-    if (!lights.empty()) o << " --lights " << quote(lights);
+    if (!env.empty()) o << " --env " << shell_quote(env);
+    if (!lights.empty()) o << " --lights " << shell_quote(lights);
     if (env_constant.size() == 3) o << " --env-constant " << env_constant[0] << ' ' << env_constant[1] << ' ' << env_constant[2];
     return o.str();
 }

@@ -5,12 +5,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
-#include <vector>
 
 #include "tests/common/run.h"
 #include "tests/common/test_data.h"
