@@ -8,6 +8,8 @@
 #include <numeric>
 
 #include "models/core/error.h"
+#include "shaders/envmap.h"
+#include "shaders/lighting.h"
 
 namespace coif::gl {
 namespace {
@@ -89,6 +91,7 @@ std::uint64_t next_stamp() {
 
 void ShellGpu::set_lights(std::span<const SrbfLight> l) {
     lights_stamp = next_stamp();
+    light_values.assign(l.begin(), l.end());
     lights = make_lights_buffer(l);
     light_count = static_cast<int>(l.size());
     shadows = make_buffer(nullptr, l.size() * sample_count * sizeof(glm::vec2));
@@ -108,9 +111,25 @@ void ShellGpu::set_grid(const DensityGrid& grid) {
     grid_origin = grid.origin;
     grid_extent = grid.extent();
     voxel = grid.voxel;
+    grid_stamp = next_stamp();
+}
+
+void ShellGpu::set_key_grid(const DensityGrid& grid) {
+    key_density = make_texture_3d(GL_RGBA32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(key_density.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RGBA, GL_FLOAT,
+                        grid.diagonal_xy.data());
+    key_density_off = make_texture_3d(GL_RG32F, grid.dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
+    glTextureSubImage3D(key_density_off.id(), 0, 0, 0, 0, grid.dims.x, grid.dims.y, grid.dims.z, GL_RG, GL_FLOAT,
+                        grid.off_diagonal.data());
+    key_grid_origin = grid.origin;
+    key_grid_extent = grid.extent();
+    key_voxel = grid.voxel;
+    grid_stamp = next_stamp();
+    check_errors("ShellGpu::set_key_grid");
 }
 
 void ShellGpu::set_body(const std::vector<std::uint8_t>& occupancy, glm::ivec3 dims) {
+    grid_stamp = next_stamp();
     body_on = !occupancy.empty();
     if (!body_on) return;
     body = make_texture_3d(GL_R8, dims, Sampling{GL_LINEAR, GL_CLAMP_TO_BORDER});
@@ -195,6 +214,110 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, boo
     return wall_ms_since(t0);
 }
 
+// ---- KeyLightPass ----------------------------------------------------------------------------------
+
+int key_lights(const ShellGpu& gpu, const ShellSettings& s) {
+    return s.shadows && s.key_lights > 0 && gpu.key_lights.valid && gpu.key_lights.wanted == s.key_lights ? gpu.key_lights.count
+                                                                                                          : 0;
+}
+
+std::vector<int> key_light_indices(std::span<const SrbfLight> lights, int count) {
+    if (count < 0 || count > kMaxKeyLights)
+        throw Error::parameter("key_lights", "must be 0.." + std::to_string(kMaxKeyLights) + ", not " + std::to_string(count));
+    std::vector<int> order(lights.size());
+    std::iota(order.begin(), order.end(), 0);
+    const auto energy = [&](int j) {
+        return std::abs(glsl::luminance(lights[static_cast<std::size_t>(j)].L)) * glsl::srbf_integral(lights[static_cast<std::size_t>(j)].lambda);
+    };
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return energy(a) > energy(b); });
+    order.resize(std::min(order.size(), static_cast<std::size_t>(count)));
+    return order;
+}
+
+double KeyLightPass::run(ShellGpu& gpu, int count, float fibre_width) {
+    KeyLightVolumes& k = gpu.key_lights;
+    if (k.valid && k.wanted == count && k.lights_stamp == gpu.lights_stamp && k.grid_stamp == gpu.grid_stamp &&
+        k.width == fibre_width)
+        return 0.0;
+    glFinish();
+    const auto t0 = Clock::now();
+    const std::vector<int> keys = key_light_indices(gpu.light_values, count);
+    k.count = static_cast<int>(keys.size());
+    if (gpu.body_on && !with_body_)
+        with_body_ = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_key_light.comp"},
+                                               std::vector<std::string>{"SHADOW_BODY 1"});
+    const Program& p = gpu.body_on ? *with_body_ : program_;
+    p.use();
+    glBindTextureUnit(0, gpu.key_density.id());
+    glUniform1i(p.uniform("u_density"), 0);
+    glBindTextureUnit(1, gpu.key_density_off.id());
+    glUniform1i(p.uniform("u_density_off"), 1);
+    glUniform3fv(p.uniform("u_grid_min"), 1, &gpu.key_grid_origin.x);
+    glUniform3fv(p.uniform("u_grid_extent"), 1, &gpu.key_grid_extent.x);
+    glUniform1f(p.uniform("u_width"), fibre_width);
+    if (gpu.body_on) {
+        glBindTextureUnit(2, gpu.body.id());
+        glUniform1i(p.uniform("u_body"), 2);
+        glUniform3fv(p.uniform("u_body_min"), 1, &gpu.grid_origin.x);
+        glUniform3fv(p.uniform("u_body_extent"), 1, &gpu.grid_extent.x);
+        glUniform1f(p.uniform("u_body_step"), gpu.voxel);
+        glUniform1f(p.uniform("u_body_opacity"), kBodyOpacity / gpu.voxel);
+        glUniform1f(p.uniform("u_body_max_depth"), kBodyMaxDepth);
+    }
+    for (int m = 0; m < k.count; ++m) {
+        const SrbfLight& light = gpu.light_values[static_cast<std::size_t>(keys[static_cast<std::size_t>(m)])];
+        const glm::vec3 l = glm::normalize(light.omega);
+        const glm::vec3 e1 = glm::normalize(std::abs(l.x) < 0.9f ? glm::cross(l, glm::vec3(1, 0, 0)) : glm::cross(l, glm::vec3(0, 1, 0)));
+        const glm::vec3 e2 = glm::cross(l, e1);
+        // The fine grid's box in the light's axes.
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner = gpu.key_grid_origin + gpu.key_grid_extent * glm::vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            const glm::vec3 q(glm::dot(corner, e1), glm::dot(corner, e2), glm::dot(corner, l));
+            lo = glm::min(lo, q);
+            hi = glm::max(hi, q);
+        }
+        const glm::vec3 size = hi - lo;
+        const float h = std::max(gpu.key_voxel, std::max({size.x, size.y, size.z}) / static_cast<float>(kKeyLightVolumeMax));
+        const glm::ivec3 dims = glm::max(glm::ivec3(glm::ceil(size / h)), glm::ivec3(2));
+        const glm::vec3 origin = lo.x * e1 + lo.y * e2 + lo.z * l;
+        // Shells' space → texture coordinates: (p · axis − lo) / (dims h) per axis.
+        const glm::vec3 span = glm::vec3(dims) * h;
+        glm::mat4 frame(1.0f);
+        for (int a = 0; a < 3; ++a) {
+            const glm::vec3 axis = a == 0 ? e1 : a == 1 ? e2 : l;
+            frame[0][a] = axis.x / span[a];
+            frame[1][a] = axis.y / span[a];
+            frame[2][a] = axis.z / span[a];
+            frame[3][a] = -lo[a] / span[a];
+        }
+        Texture& volume = k.volume[static_cast<std::size_t>(m)];
+        if (volume.id() == 0 || k.dims[static_cast<std::size_t>(m)] != dims)
+            volume = make_texture_3d(GL_R16F, dims, Sampling{GL_LINEAR, GL_CLAMP_TO_EDGE});
+        k.dims[static_cast<std::size_t>(m)] = dims;
+        k.index[static_cast<std::size_t>(m)] = keys[static_cast<std::size_t>(m)];
+        k.light[static_cast<std::size_t>(m)] = glm::vec4(l, light.lambda);
+        k.frame[static_cast<std::size_t>(m)] = frame;
+        glUniform3fv(p.uniform("u_origin"), 1, &origin.x);
+        glUniform3fv(p.uniform("u_e1"), 1, &e1.x);
+        glUniform3fv(p.uniform("u_e2"), 1, &e2.x);
+        glUniform3fv(p.uniform("u_l"), 1, &l.x);
+        glUniform1f(p.uniform("u_h"), h);
+        glUniform3i(p.uniform("u_dims"), dims.x, dims.y, dims.z);
+        glBindImageTexture(0, volume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
+        glDispatchCompute(static_cast<GLuint>((dims.x + 7) / 8), static_cast<GLuint>((dims.y + 7) / 8), 1);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    k.valid = true;
+    k.wanted = count;
+    k.lights_stamp = gpu.lights_stamp;
+    k.grid_stamp = gpu.grid_stamp;
+    k.width = fibre_width;
+    check_errors("KeyLightPass");
+    glFinish();
+    return wall_ms_since(t0);
+}
+
 // ---- LightingPass ----------------------------------------------------------------------------------
 
 void LightingPass::bind_tables(const Program& prog) const { tables_.bind(prog, 2); }
@@ -259,7 +382,8 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
                        std::span<const int> levels) {
     const std::vector<int> strides = lit_strides(gpu, levels);
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
-                      key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull && key.eye == eye &&
+                      key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull &&
+                      key.key_lights == key_lights(gpu, s) && key.eye == eye &&
                       key.lights_stamp == gpu.lights_stamp &&
                       key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp &&
                       key.strides == strides;
@@ -270,6 +394,8 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     // Culling lights keeps each sample's estimates and its lights kept in arrays of the light count.
     const bool cull = s.light_cull > 0.0f && gpu.light_count > 0 && gpu.light_count <= kMaxCulledLights;
     if (cull) defines.push_back("SHELL_CULL_LIGHTS " + std::to_string(gpu.light_count));
+    const int keys = key_lights(gpu, s);
+    if (keys > 0) defines.push_back("SHELL_KEY_LIGHTS " + std::to_string(keys));
     std::string name;
     for (const std::string& d : defines) name += d + "|";
     auto& slot = programs_[name];
@@ -287,18 +413,19 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     glUniform1i(program.uniform("u_step"), s.lighting_step);
     glUniform3fv(program.uniform("u_eye"), 1, &eye.x);
     if (cull) glUniform1f(program.uniform("u_light_cull"), s.light_cull);
+    if (keys > 0) glUniform1iv(program.uniform("u_key_index"), keys, gpu.key_lights.index.data());
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true,          s.hair,           s.shadows,           s.tangent_spread,    s.lighting_step, s.light_cull,
-           eye,           gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp, strides};
+    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, s.light_cull, keys, eye, gpu.lights_stamp,
+           gpu.absorption_stamp, gpu.geometry_stamp, strides};
     return true;
 }
 
 // ---- ShellsPass ------------------------------------------------------------------------------------
 
 const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& L,
-                                           DepthTest depth, bool fold) {
+                                           DepthTest depth, int keys, bool fold) {
     // The lighting sums are read per vertex when the lighting rows are the mesh rows (the varyings then
     // interpolate exactly what a per-fragment fetch would), per fragment otherwise.
     // Every lighting_step-th row lit is still a subset of the mesh rows, so the per-vertex read stays exact.
@@ -311,7 +438,8 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
                                      std::string("SHELL_FOLD ") + (fold ? "1" : "0"),
                                      std::string("SHELL_TILT_PICK ") + (LightingPass::tilt_pick(s) ? "1" : "0"),
                                      std::string("SHELL_SECTOR_PICK ") + (s.sector_per_strip ? "1" : "0"),
-                                     "LIGHTING_TEXELS " + std::to_string(kLightingTexels)};
+                                     "LIGHTING_TEXELS " + std::to_string(kLightingTexels),
+                                     "SHELL_KEY_LIGHTS " + std::to_string(keys)};
     if (lighting == 2) {  // the per-fragment reference lights every fragment as the lighting pass lights a sample
         const std::vector<std::string> variant = LightingPass::variant_defines(s);
         defines.insert(defines.end(), variant.begin(), variant.end());
@@ -391,6 +519,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     const int width = t.viewport.z, height = t.viewport.w;
     const DepthTest depth = floor_only || t.scene_depth == 0 ? DepthTest::none : t.depth_test;
     const Program* program = &floor_;
+    const int keys = floor_only ? 0 : key_lights(gpu, s);  // lit per fragment with their shadow volumes
     if (depth_pass) {
         const std::vector<std::string> defines{"KBUFFER_SLOTS " + std::to_string(s.kbuffer_slots),
                                                "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};
@@ -402,13 +531,13 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                                              defines);
         program = slot.get();
     } else if (!floor_only) {
-        program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth);
+        program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth, keys);
     }
     // The fold's program (ShellSettings::fold_level): the same but for SHELL_FOLD; the k-buffer's depth pass draws the
     // same meshes with its own.
     const bool can_fold = !floor_only && s.fold_level < kLodLevels && weighted && !s.lighting_per_fragment;
     const Program* fold_program = program;
-    if (can_fold && !depth_pass) fold_program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth, true);
+    if (can_fold && !depth_pass) fold_program = &shading_program(s.compositing, s, gpu.lighting_rows, L, depth, keys, true);
     // A sub-pixel shift of the image (ShellRenderer::render's supersampling): x right, y down, in pixels.
     const glm::mat4 vp = pixel_shift(d.jitter, width, height) * view.projection * view.view;
     glm::vec2 depth_range{0.0f};  // the weighted compositing's eye distances (below)
@@ -451,6 +580,18 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
             else if (s.own_cluster_shadow) {
                 lighting.bind_tables(prog);  // lut_own_cluster
                 if (own_cluster_variant(s) == 2) glUniform1f(prog.uniform("u_d_f"), s.hair.d_f);
+            }
+            if (keys > 0) {  // their shadow volumes on the units after the scene's depth
+                const KeyLightVolumes& k = gpu.key_lights;
+                std::array<GLint, kMaxKeyLights> units{};
+                for (int m = 0; m < keys; ++m) {
+                    units[static_cast<std::size_t>(m)] = kSceneDepthUnit + 1 + m;
+                    glBindTextureUnit(static_cast<GLuint>(kSceneDepthUnit + 1 + m), k.volume[static_cast<std::size_t>(m)].id());
+                }
+                glUniform1iv(prog.uniform("u_key_volume"), keys, units.data());
+                glUniformMatrix4fv(prog.uniform("u_key_frame"), keys, GL_FALSE, &k.frame[0][0][0]);
+                glUniform4fv(prog.uniform("u_key_light"), keys, &k.light[0].x);
+                glUniform1iv(prog.uniform("u_key_index"), keys, k.index.data());
             }
         }
         if (exact) {

@@ -39,8 +39,9 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
 
 // RGBA texels per lighting sample: the 27 floats C_k, S_k, V, the own cluster's stretch and the lights lit in 8, then each
 // fibre tangent's lum(C_0), then the fibres' forward loss 1 − ā_f, then each tangent's lum(C_1), lum(S_1), lum(C_2),
-// lum(S_2) (shaders/gl/shell_lighting.comp; the shaders' LIGHTING_TEXELS).
-inline constexpr int kLightingTexels = 14;
+// lum(S_2), then three per key light (its light unshadowed, its forward-scattered light, its forward loss)
+// (shaders/gl/shell_lighting.comp; the shaders' LIGHTING_TEXELS).
+inline constexpr int kLightingTexels = 14 + 3 * kMaxKeyLights;
 // The most lights the lighting pass culls per sample (ShellSettings::light_cull): it keeps each light's estimate and
 // the lights kept in arrays of the light count, per sample; with more lights it lights every one.
 inline constexpr int kMaxCulledLights = 128;
@@ -52,6 +53,27 @@ inline constexpr int kSceneDepthUnit = 3 + shading::kLutCount;
 // The lighting pass's sums of `clusters` clusters of `rows` lighting samples (ShellGpu::lighting), cleared to 0: a
 // sample the pass skips (lit_samples) holds a finite value, which a bilinear read beside a lit one weighs by 0.
 Texture make_lighting_texture(int rows, std::size_t clusters);
+
+// The key lights of ShellSettings::key_lights and their shadow volumes (KeyLightPass): the brightest lights
+// (key_light_indices), each lit per fragment with the fibres met toward it from the fragment itself, read from a volume
+// aligned with the light, instead of through the lighting pass's sums with the shadow of the cluster's axis.
+struct KeyLightVolumes {
+    int count = 0;
+    std::array<int, kMaxKeyLights> index{};           // in the lights buffer
+    std::array<glm::vec4, kMaxKeyLights> light{};     // unit direction toward the light, λ
+    std::array<glm::mat4, kMaxKeyLights> frame{};     // shells' space → the volume's texture coordinates
+    std::array<Texture, kMaxKeyLights> volume;        // R16F: the fibres met toward the light (n, with the body's depth)
+    std::array<glm::ivec3, kMaxKeyLights> dims{};
+    // What they were made from: the lights, the fine grid, the fibres' diameter, the count asked for.
+    bool valid = false;
+    std::uint64_t lights_stamp = 0, grid_stamp = 0;
+    float width = 0.0f;
+    int wanted = 0;
+};
+
+// The `count` lights of most energy, |lum(L_j)| ∫G_j dω (shaders/envmap.glsl srbf_integral), brightest first; ties by
+// index. Throws coif::Error::parameter unless 0 ≤ count ≤ kMaxKeyLights.
+std::vector<int> key_light_indices(std::span<const SrbfLight> lights, int count);
 
 struct ShellGpu {
     // Needs a current GL 4.5 context; throws coif::Error if the atlas exceeds the GPU's texture size.
@@ -76,10 +98,17 @@ struct ShellGpu {
     Texture lighting;  // RGBA32F, lighting_rows × clusters · kLightingTexels: the lighting pass's sums
     Buffer lights, shadows;  // shaders/gl/srbf_lights.glsl lights; (T̃, n) per sample and light
     int light_count = 0;
+    std::vector<SrbfLight> light_values;  // what `lights` holds
     Texture absorption;  // RGBA32F σa per (lighting row, cluster), when absorption_on
     bool absorption_on = false;
     Texture body;        // R8 on the shadow grid: a character's body as an occluder (voxelize_body), when body_on
     bool body_on = false;
+    // The fine grid of the key lights' shadow volumes (kKeyLightGridSize; set_key_grid), the same M as `density`.
+    Texture key_density, key_density_off;
+    glm::vec3 key_grid_origin{0.0f}, key_grid_extent{0.0f};
+    float key_voxel = 1;
+    std::uint64_t grid_stamp = 0;  // changed by set_grid, set_body and set_key_grid
+    KeyLightVolumes key_lights;     // with the lights: swapped with them per instance (online/shell_renderer.cpp)
     // Changed by set_lights and set_absorption, each to a number never used before: what the lighting pass's sums
     // were made from (LightingKey).
     std::uint64_t lights_stamp = 0, absorption_stamp = 0;
@@ -93,6 +122,27 @@ struct ShellGpu {
     void set_grid(const DensityGrid& grid);
     // The body's voxels on the shadow grid (voxelize_body), or empty: no body.
     void set_body(const std::vector<std::uint8_t>& occupancy, glm::ivec3 dims);
+    // Uploads the key lights' fine grid.
+    void set_key_grid(const DensityGrid& grid);
+};
+
+// The key lights that the passes light apart for settings `s`: with shadows on, gpu.key_lights' count when they were
+// made for s.key_lights (KeyLightPass::run), else 0.
+int key_lights(const ShellGpu& gpu, const ShellSettings& s);
+
+// The key lights' shadow volumes (shaders/gl/shell_key_light.comp): for each of the `count` brightest lights, the fibres
+// met from every point toward its centre direction, through the fine grid (ShellGpu::set_key_grid) and the body, on a
+// grid aligned with the light with the fine grid's voxel (at most kKeyLightVolumeMax voxels along each axis).
+// Remade only when the lights, the grids, the fibres' diameter or the count change; returns its wall time in ms (0 when
+// it kept them).
+inline constexpr int kKeyLightVolumeMax = 192;
+class KeyLightPass {
+public:
+    double run(ShellGpu& gpu, int count, float fibre_width);
+
+private:
+    Program program_{{"shaders/gl/shell_key_light.comp"}};
+    std::unique_ptr<Program> with_body_;
 };
 
 class ShadowPass {
@@ -122,6 +172,7 @@ struct LightingKey {
     float tangent_spread = 0.0f;
     int step = 1;
     float light_cull = 0.0f;
+    int key_lights = 0;
     glm::vec3 eye{0.0f};
     std::uint64_t lights_stamp = 0, absorption_stamp = 0, geometry_stamp = 0;
     std::vector<int> strides;  // per cluster: every strides-th of its rows lit (lit_strides: its level of detail's)
@@ -223,8 +274,9 @@ private:
     void pick_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, std::span<const ClusterBox> boxes,
                      int height, float budget_px, std::vector<int>& levels) const;
     // `fold`: the program that draws two layers from the outer one's mesh (ShellSettings::fold_level).
+    // `keys`: the key lights lit per fragment (key_lights).
     const Program& shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
-                                   DepthTest depth, bool fold = false);
+                                   DepthTest depth, int keys, bool fold = false);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};
     std::map<std::string, std::unique_ptr<Program>> depth_programs_;  // the k-buffer's depth pass, by its defines
     std::map<std::string, std::unique_ptr<Program>> programs_;  // one per compile-time variant, made on first use

@@ -63,10 +63,14 @@ struct InstanceLights {
     std::uint64_t lights_stamp = 0;
     ShadowKey shadow_key;  // what `shadows` holds
     std::vector<int> levels;  // its clusters' levels of detail (ShellDraw::levels)
+    std::vector<SrbfLight> values;  // what `buffer` holds (ShellGpu::light_values)
+    KeyLightVolumes key_lights;     // its key lights' shadow volumes
 };
 
 struct ShellRenderer::Impl {
     ShadowPass shadow;
+    KeyLightPass key_light;
+    bool key_grid_made = false;  // gpu's key grid (ShellGpu::set_key_grid) is of the grid's strands as they are now
     double depth_pass_ms = 0;  // the k-buffer's depth passes of this frame so far (timed), added to its shells' time
     LightingPass lighting;
     ShellsPass shells_pass;
@@ -128,6 +132,17 @@ struct ShellRenderer::Impl {
         std::swap(lighting_key, l.lighting_key);
         std::swap(gpu->lights_stamp, l.lights_stamp);
         std::swap(shadow_key, l.shadow_key);
+        std::swap(gpu->light_values, l.values);
+        std::swap(gpu->key_lights, l.key_lights);
+    }
+    // The key lights' fine grid (ShellSettings::key_lights), made on first use after each change of the strands: the
+    // grid's strands as they are now voxelized at kKeyLightGridSize, or the shadow grid itself where the renderer has no
+    // strands (set_shadow_grid's).
+    void make_key_grid() {
+        if (key_grid_made) return;
+        const Strands& strands = !moved_strands.points.empty() ? moved_strands : shadow_source;
+        gpu->set_key_grid(strands.points.empty() ? grid : voxelize_strands(strands, glm::mat3(1.0f), kKeyLightGridSize));
+        key_grid_made = true;
     }
 };
 
@@ -167,6 +182,7 @@ void ShellRenderer::set_hair(CookedShells cooked) {
     m.shadow_source = Strands{};
     m.moved_strands = Strands{};
     m.shadow_strand_cluster.clear();
+    m.key_grid_made = false;
     m.shells_pass.forget_shells();  // its cached boxes were of the last hair's meshes
     m.invalidate_shadows();
 
@@ -253,6 +269,7 @@ void ShellRenderer::set_shadow_grid(DensityGrid grid) {
     if (glm::any(glm::lessThan(grid.dims, glm::ivec3(1))) || !(grid.voxel > 0.0f))
         throw Error::parameter("shadow grid", "it is empty");
     m.grid = std::move(grid);
+    m.key_grid_made = false;
     upload_grid();
 }
 
@@ -312,6 +329,7 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
             m.moved_strands.points[k] = glm::vec3(T * glm::vec4(from.points[k], 1.0f));
     }
     m.grid = voxelize_strands(m.moved_strands, glm::mat3(1.0f), kShadowGridSize);
+    m.key_grid_made = false;
     upload_grid();
     move_timings_.shadow_grid_ms = wall_ms_since(regrid);
 }
@@ -445,6 +463,11 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
         m.shadow_key = shadow_key;
         m.lighting_key.valid = false;  // the sums read the shadows
     }
+    // The key lights' shadow volumes: only when the lights, the strands, the radius or their count changed.
+    if (!floor_only && s.shadows && s.key_lights > 0 && gpu.light_count > 0) {
+        m.make_key_grid();
+        timings_.shadows_ms += m.key_light.run(gpu, s.key_lights, 2.0f * radius);
+    }
 
     // Lighting pass, then the shells; with s.timed, wall-clock per pass between glFinish calls.
     if (s.timed) glFinish();
@@ -562,6 +585,20 @@ std::vector<glm::vec2> ShellRenderer::read_shadows() const {
     const ShellGpu& g = *impl_->gpu;
     std::vector<glm::vec2> out(g.sample_count * static_cast<std::size_t>(g.light_count));
     if (!out.empty()) glGetNamedBufferSubData(g.shadows.id(), 0, static_cast<GLsizeiptr>(out.size() * sizeof(glm::vec2)), out.data());
+    return out;
+}
+
+ShellRenderer::KeyVolume ShellRenderer::read_key_volume(int m) const {
+    const KeyLightVolumes& k = impl_->gpu->key_lights;
+    KeyVolume out;
+    if (!k.valid || m < 0 || m >= k.count) return out;
+    const std::size_t i = static_cast<std::size_t>(m);
+    out.dims = k.dims[i];
+    out.frame = k.frame[i];
+    out.light = k.index[i];
+    out.fibres.resize(static_cast<std::size_t>(out.dims.x) * out.dims.y * out.dims.z);
+    glGetTextureImage(k.volume[i].id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.fibres.size() * sizeof(float)),
+                      out.fibres.data());
     return out;
 }
 

@@ -94,7 +94,7 @@ struct OwnClusterDepth {
 // calls (GL_TIME_ELAPSED is not used: llvmpipe's rasteriser runs on after a query ends; measured, a lighting
 // pass of 0.5 ms read 430 ms).
 struct ShellTimings {
-    double shadows_ms = 0;  // wall time of the shadow pass (glFinish); 0 when cached
+    double shadows_ms = 0;  // wall time of the shadow pass and the key lights' volumes (glFinish); 0 when cached
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact or weighted compositing's resolve (timed)
     std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
@@ -211,6 +211,16 @@ public:
     // The shadow pass's output of the last draw that ran it: (T̃, n) per lighting sample (cluster-major,
     // as lighting_sample) and light.
     std::vector<glm::vec2> read_shadows() const;
+    // Key light m's shadow volume (ShellSettings::key_lights) as the last draw made it: the fibres met toward the light
+    // per voxel (x fastest), its dimensions, the shells' space → texture coordinates map and the light's index; empty
+    // values when there is no such key light.
+    struct KeyVolume {
+        std::vector<float> fibres;
+        glm::ivec3 dims{0};
+        glm::mat4 frame{1.0f};
+        int light = -1;
+    };
+    KeyVolume read_key_volume(int m) const;
     // The lighting samples (world position, tangent, frame normal r0) in cluster-major order.
     std::vector<glm::vec3> lighting_sample(std::size_t index) const;
     const ShellTimings& timings() const { return timings_; }

@@ -203,6 +203,10 @@ ParamTable<ShellSettings> make_table() {
                               "skip, per lighting sample, the dimmest lights whose estimated share of its light sums to "
                               "at most this fraction (0: every light)",
                               [](auto& s) -> auto& { return s.light_cull; }));
+    t.push_back(int_param<S>("key_lights", 0, kMaxKeyLights,
+                             "the brightest lights lit per fragment, each with the shadow from the fragment itself toward "
+                             "it (a volume per light made from a finer grid; 0: every light through the lighting sums)",
+                             [](auto& s) -> auto& { return s.key_lights; }));
     return t;
 }
 

@@ -16,6 +16,7 @@ namespace coif::gl {
 
 inline constexpr int kMaxShellNeighbours = 4;  // records per sector kept for the GPU
 inline constexpr int kMaxKBufferSlots = 16;    // ShellSettings::kbuffer_slots
+inline constexpr int kMaxKeyLights = 4;        // ShellSettings::key_lights
 
 // How the shells are composited (docs/renderer.md decision 4): sorted (clusters back to front, blended), unsorted (blended
 // in the style's order), exact (per-pixel fragment lists, sorted), weighted (weighted blended order-independent
@@ -112,6 +113,12 @@ struct ShellSettings {
     // light, and so do more than 128 lights (online/shell_passes.h kMaxCulledLights). docs/renderer.md ("Lights culled
     // per lighting sample") measures the cost and the error.
     float light_cull = 0.05f;
+    // The brightest lights (by |lum(L_j)| times their solid angle), up to 4, lit per fragment with their own shadow: the
+    // fibres met from the fragment itself toward the light, read from a volume aligned with the light and made from a
+    // finer grid of the strands (online/shell_passes.h KeyLightPass), instead of through the lighting pass's sums with
+    // the shadow marched from the cluster's axis and the own cluster's factor. The rest stay in the sums. 0: none.
+    // docs/quality.md ("Key lights") measures the image and the cost.
+    int key_lights = 0;
     // The k-buffer compositing's slots per pixel (Compositing::kbuffer, online/weighted_blend.h): its k nearest fragments
     // are composited exactly, 1..kMaxKBufferSlots. docs/renderer.md ("Decision 4") measures the cost and the error.
     int kbuffer_slots = 8;

@@ -33,6 +33,22 @@ vec3 shell_light_weight(SrbfPoint p, int j, vec2 sh, inout float lum_visible, in
     return srbf_light_radiance(p, u_d_f, j, sh);
 }
 
+// Light j's forward-scattered light at point p per unit of its share max(T_f − T̃, 0), for `fibres` met on the way
+// (srbf_shadowed_multiple's second term, d_f included), and the fibres' forward loss 1 − ā_f at the light's angle: a key
+// light (ShellSettings::key_lights) is shadowed per fragment, where T̃ and T_f = exp(−n (1 − ā_f)) are known.
+vec3 shell_light_forward(SrbfPoint p, float d_f, int j, float fibres, out vec3 loss) {
+    float lambda_j = lights[j].direction_lambda.w;
+    float theta_j;
+    float phi_j;
+    hair_angles(lights[j].direction_lambda.xyz, p.T, p.r0, p.w, theta_j, phi_j);
+    vec4 fw = fetch_ms_forward(theta_j, p.hp.sigma_a);
+    loss = vec3(1.0) - fw.xyz;
+    if (SRBF_MULTIPLE == 0) return vec3(0.0);
+    float scatterings = fibres * (fw.x + fw.y + fw.z) / 3.0;
+    return lights[j].radiance.rgb * (d_f * srbf_integral(lambda_j)) *
+           srbf_multiple(p.hp, SRBF_CONFIG, p.f0123, p.f45, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j, scatterings * fw.w);
+}
+
 // The fibres' tangents about the cluster's (shaders/lighting/fibre_tangents.glsl): SHELL_TANGENTS 4, the mean
 // over the tilts m ± a, m ± b; 1, T itself. u_tangent_spread ≥ 0 (ShellSettings::tangent_spread given) makes
 // them a ring of that RMS angle; < 0 takes the lighting samples' measured tilts (m, a, b).

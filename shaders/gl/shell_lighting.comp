@@ -23,6 +23,12 @@
 // 1 / cos is the 29th float, the lights' mean stretch), for the own cluster's forward-scattered light (shell_shade.glsl
 // SHELL_OWN 2). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
 //
+// With SHELL_KEY_LIGHTS K (ShellSettings::key_lights) the K lights u_key_index are left out of every sum but texels 8,
+// 10..13 (and the shadow AOV), and texels 14 + 3m .. 16 + 3m hold key light m's weight for the shells to shadow per
+// fragment (shell_shade.glsl): its light unshadowed (single scattering and the local multiple scattering, T̃ = 1), its
+// forward-scattered light per unit of its share max(T_f − T̃, 0) (shell_light_forward, at the axis's n), and the fibres'
+// forward loss 1 − ā_f at its angle, each the mean over the fibre tangents.
+//
 // With SHELL_CULL_LIGHTS N (the light count, up to kMaxCulledLights; ShellSettings::light_cull > 0) each sample lights only the lights that
 // carry its light: light j's share is estimated as b_j = |lum(L_j)| ∫G_j (T̃_j + d_f max_c(T_f − T̃_j)), its power times
 // what reaches the sample unscattered and forward-scattered (srbf_shadowed.glsl, at the axis tangent), and the
@@ -31,6 +37,19 @@
 #include "shaders/lighting/own_cluster.glsl"
 
 layout(local_size_x = 32) in;
+#ifndef SHELL_KEY_LIGHTS
+#define SHELL_KEY_LIGHTS 0
+#endif
+#if SHELL_KEY_LIGHTS > 0
+uniform int u_key_index[SHELL_KEY_LIGHTS];  // the key lights in the lights buffer
+bool is_key(int j) {
+    for (int m = 0; m < SHELL_KEY_LIGHTS; ++m)
+        if (u_key_index[m] == j) return true;
+    return false;
+}
+#else
+bool is_key(int j) { return false; }
+#endif
 
 #include "shaders/gl/lighting_samples.glsl"
 layout(rgba32f, binding = 0) writeonly uniform image2D u_out;
@@ -87,7 +106,7 @@ void main() {
             vec3 T_f = exp(-sh.y * (vec3(1.0) - a_f));
             reach += u_d_f * max(max(max(T_f.x, T_f.y), T_f.z) - sh.x, 0.0);
         }
-        estimate[j] = abs(lum) * srbf_integral(dl.w) * reach;
+        estimate[j] = is_key(j) ? 0.0 : abs(lum) * srbf_integral(dl.w) * reach;  // a key light is lit apart
         estimated += estimate[j];
     }
     // The lights below a threshold are skipped: the highest threshold under which the estimates sum to at most
@@ -118,6 +137,16 @@ void main() {
     // The kept lights stand for the skipped ones too: scaled by Σ b over Σ b kept (at most 1 / (1 − u_light_cull)).
     float stand_in = kept_estimate > 0.0 ? estimated / kept_estimate : 1.0;
 #endif
+#if SHELL_KEY_LIGHTS > 0
+    vec3 key_direct[SHELL_KEY_LIGHTS];
+    vec3 key_forward[SHELL_KEY_LIGHTS];
+    vec3 key_loss[SHELL_KEY_LIGHTS];
+    for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
+        key_direct[m] = vec3(0.0);
+        key_forward[m] = vec3(0.0);
+        key_loss[m] = vec3(0.0);
+    }
+#endif
     vec4 tangent_lum = vec4(0.0);  // lum(C_0) of each tangent alone (texel 8)
     vec4 tangent_c1 = vec4(0.0);   // lum(C_1), lum(S_1), lum(C_2), lum(S_2) of each tangent alone (texels 10..13)
     vec4 tangent_s1 = vec4(0.0);
@@ -135,6 +164,7 @@ void main() {
             vec3 wj = srbf_light_radiance(p, u_d_f, j, sample_shadow(i, j)) * (stand_in / float(SHELL_TANGENTS));
 #else
         for (int j = 0; j < u_light_count; ++j) {
+            if (is_key(j)) continue;  // lit apart, below
             vec3 wj = shell_light_weight(p, j, sample_shadow(i, j), visible, total) * (1.0 / float(SHELL_TANGENTS));
 #endif
             vec3 l = lights[j].direction_lambda.xyz;
@@ -162,6 +192,34 @@ void main() {
             }
         }
         tangent_lum[q] = float(SHELL_TANGENTS) * luminance(C[0] - C0_before);
+#if SHELL_KEY_LIGHTS > 0
+        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
+            int j = u_key_index[m];
+            vec2 sh = sample_shadow(i, j);
+            vec3 direct = srbf_light_radiance(p, u_d_f, j, vec2(1.0, 0.0));
+            vec3 loss;
+            vec3 forward = shell_light_forward(p, u_d_f, j, sh.y, loss);
+            key_direct[m] += direct * (1.0 / float(SHELL_TANGENTS));
+            key_forward[m] += forward * (1.0 / float(SHELL_TANGENTS));
+            key_loss[m] += loss * (1.0 / float(SHELL_TANGENTS));
+            // This tangent's weight at the axis's shadow: for texels 8, 10..13 and the shadow AOV only.
+            vec3 wj = direct * sh.x + max(exp(-sh.y * loss) - vec3(sh.x), vec3(0.0)) * forward;
+            float lum = light_luminance(j);
+            visible += lum * sh.x;
+            total += lum;
+            float lw = luminance(wj);
+            tangent_lum[q] += lw;
+            vec3 l = lights[j].direction_lambda.xyz;
+            float psi = sector_azimuth(l, T, r0);
+            float lp = shell_light_spread(j, T);
+            float d1 = exp(-0.25 * lp * lp);
+            float d2 = d1 * d1 * d1 * d1;
+            tangent_c1[q] += lw * d1 * cos(psi);
+            tangent_s1[q] += lw * d1 * sin(psi);
+            tangent_c2[q] += lw * d2 * cos(2.0 * psi);
+            tangent_s2[q] += lw * d2 * sin(2.0 * psi);
+        }
+#endif
     }
     if (SHELL_TANGENTS == 1) {
         tangent_lum = vec4(tangent_lum.x);
@@ -193,6 +251,13 @@ void main() {
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 11), tangent_s1);
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 12), tangent_c2);
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 13), tangent_s2);
+#if SHELL_KEY_LIGHTS > 0
+    for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
+        imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 14 + 3 * m), vec4(key_direct[m], 0.0));
+        imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 15 + 3 * m), vec4(key_forward[m], 0.0));
+        imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 16 + 3 * m), vec4(key_loss[m], 0.0));
+    }
+#endif
     vec3 a_f = fetch_ms_forward(acos(clamp(1.0 / v[28], 0.0, 1.0)), hp.sigma_a).rgb;
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 9), vec4(vec3(1.0) - a_f, 0.0));
 }

@@ -37,6 +37,12 @@
 //                     tilt_per_strip, fibre_strip_tangent below); 0: every fibre at the four tangents' mean
 //   SHELL_SECTOR_PICK 1: each strip takes the records of one of its HSV's two sectors, drawn against γ
 //                     (ShellSettings::sector_per_strip); 0: both sectors' records mixed by γ (004 eq. 7)
+//   SHELL_KEY_LIGHTS  K > 0: the key lights (ShellSettings::key_lights), left out of the lighting sums, each lit here
+//                     with the fibres met from this fragment toward it (its shadow volume, shell_key_light.comp) and
+//                     without the own cluster's factor (the volume counts the own cluster's fibres): its weight from the
+//                     lighting pass's texels 14 + 3m .. 16 + 3m, w = D T̃ + max(T_f − T̃, 0) F with T̃ = exp(−n),
+//                     T_f = exp(−n (1 − ā_f)), times re at its own azimuth. (Without the own cluster's shadow, eq. 12's
+//                     factor still takes all the light.)
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -70,6 +76,18 @@
 #endif
 #ifndef SHELL_SECTOR_PICK
 #define SHELL_SECTOR_PICK 0
+#endif
+#ifndef SHELL_KEY_LIGHTS
+#define SHELL_KEY_LIGHTS 0
+#endif
+#if SHELL_KEY_LIGHTS > 0
+uniform sampler3D u_key_volume[SHELL_KEY_LIGHTS];  // the fibres met toward each key light (KeyLightPass)
+uniform mat4 u_key_frame[SHELL_KEY_LIGHTS];        // shells' space → the volume's texture coordinates
+uniform vec4 u_key_light[SHELL_KEY_LIGHTS];        // unit direction toward the light, λ
+uniform int u_key_index[SHELL_KEY_LIGHTS];         // in the lights buffer
+
+// The fibres met from p toward key light m.
+float key_fibres(int m, vec3 p) { return textureLod(u_key_volume[m], (u_key_frame[m] * vec4(p, 1.0)).xyz, 0.0).r; }
 #endif
 #if SHELL_OWN != 0
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
@@ -222,14 +240,24 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
 #endif
 }
 
-#if SHELL_LIGHTING == 2
 // re at a light's in-plane azimuth θl from its harmonics (c01 = (a0, a1, b1), c23 = (a2, b2, a3, b3), c4 = (a4, b4)),
 // harmonic k damped by d_k for the light's spread.
 float re_at(vec3 c01, vec4 c23, vec2 c4, float th, float d1, float d2, float d3, float d4) {
     return c01.x + d1 * (c01.y * cos(th) + c01.z * sin(th)) + d2 * (c23.x * cos(2.0 * th) + c23.y * sin(2.0 * th)) +
            d3 * (c23.z * cos(3.0 * th) + c23.w * sin(3.0 * th)) + d4 * (c4.x * cos(4.0 * th) + c4.y * sin(4.0 * th));
 }
-#else
+
+// The dampings d_1..d_4 of re's harmonics for a light of bandwidth λ along l (unit) at a fibre of tangent T:
+// d_k = exp(−k² λ'² / 4), λ' = λ / |l projected on the normal plane of T| (shell_light.glsl shell_light_spread).
+void light_dampings(vec3 l, float lambda, vec3 T, out float d1, out float d2, out float d3, out float d4) {
+    float lp = lambda / max(length(l - dot(l, T) * T), 1e-3);
+    d1 = exp(-0.25 * lp * lp);
+    d2 = d1 * d1 * d1 * d1;
+    d3 = d2 * d2 * d1;
+    d4 = d2 * d2 * d2 * d2;
+}
+
+#if SHELL_LIGHTING != 2
 // Σ_j w_j re(θl_j) from the lighting sums turned to the fragment's radial axis: re's harmonics per channel (h[0] = a0,
 // h[2k − 1] = a_k, h[2k] = b_k) against C_k, S_k, with e_k = (cos kψr, sin kψr):
 //   Σ_j w_j cos k(ψj − ψr) = C_k cos kψr + S_k sin kψr;  Σ_j w_j sin k(ψj − ψr) = S_k cos kψr − C_k sin kψr.
@@ -336,6 +364,16 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         vec2 sh = vec2(1.0, 0.0);
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
+        float own_on = 1.0;  // 0 for a key light: its volume counts the own cluster's fibres
+#if SHELL_KEY_LIGHTS > 0
+        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
+            if (u_key_index[m] == j) {
+                float n = key_fibres(m, position);
+                sh = vec2(exp(-n), n);
+                own_on = 0.0;
+            }
+        }
+#endif
 #if SHELL_TILT_PICK == 1
         vec3 wj = shell_light_weight(strip_point, j, sh, visible, total);
 #else
@@ -343,25 +381,22 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         vec3 wj = shell_light_weight_fibres(hp, V, T, r, tm, ta, tb, j, sh, visible, total);
 #endif
         float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
-        float lp = shell_light_spread(j, T);
-        float d1 = exp(-0.25 * lp * lp);
-        float d2 = d1 * d1 * d1 * d1;
-        float d3 = d2 * d2 * d1;
-        float d4 = d2 * d2 * d2 * d2;
+        float d1, d2, d3, d4;
+        light_dampings(lights[j].direction_lambda.xyz, lights[j].direction_lambda.w, T, d1, d2, d3, d4);
 #if SHELL_OWN == 1
         // re times this light's own-cluster transmittance (its own angle to the axis), as harmonics, so that the
         // light's spread blurs the product as it does in the Fourier path.
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), rho, t0.yzw, t1,
-                              t2.xy, h01, h23, h4);
+        own_cluster_harmonics(own_on * tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), rho,
+                              t0.yzw, t1, t2.xy, h01, h23, h4);
         float re = re_at(h01, h23, h4, th, d1, d2, d3, d4);
 #elif SHELL_OWN == 2
         // As SHELL_OWN 1 with the forward-scattered light (own_cluster_forward_series), per channel, at this light's
         // own angle to the axis: ā_f at θd = its longitudinal angle, as the lighting pass takes it.
         vec3 lj = normalize(lights[j].direction_lambda.xyz);
-        float tau_j = tau_r * own_cluster_stretch(lj, T);
+        float tau_j = own_on * tau_r * own_cluster_stretch(lj, T);
         vec3 loss = vec3(1.0) - fetch_ms_forward(safe_asin(dot(lj, T)), hp.sigma_a).rgb;
         float p0;
         vec4 p1234;
@@ -429,6 +464,11 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec2 e2 = vec2(e1.x * e1.x - e1.y * e1.y, 2.0 * e1.x * e1.y);
     vec2 e3 = vec2(e2.x * e1.x - e2.y * e1.y, e2.x * e1.y + e2.y * e1.x);
     vec2 e4 = vec2(e2.x * e2.x - e2.y * e2.y, 2.0 * e2.x * e2.y);
+#if SHELL_KEY_LIGHTS > 0
+    vec3 raw01 = t0.yzw;  // re's own harmonics, for the key lights (no own cluster's factor)
+    vec4 raw23 = t1;
+    vec2 raw4 = t2.xy;
+#endif
 #if SHELL_OWN == 1
     {  // re(θl) times the own cluster's transmittance at θl, as harmonics (shaders/lighting/own_cluster.glsl)
         vec3 h01;
@@ -479,6 +519,20 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
                         vec3(t2.y));
 #endif
     vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
+#if SHELL_KEY_LIGHTS > 0
+    for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
+        vec3 direct = lighting_fetch(texcoord.y, info.y, 14 + 3 * m).rgb;
+        vec3 forward = lighting_fetch(texcoord.y, info.y, 15 + 3 * m).rgb;
+        vec3 loss = lighting_fetch(texcoord.y, info.y, 16 + 3 * m).rgb;
+        float n = key_fibres(m, position);
+        float T_direct = exp(-n);
+        vec3 w = direct * T_direct + max(exp(-n * loss) - vec3(T_direct), vec3(0.0)) * forward;
+        vec3 l = u_key_light[m].xyz;
+        float d1, d2, d3, d4;
+        light_dampings(l, u_key_light[m].w, T, d1, d2, d3, d4);
+        sum += w * re_at(raw01, raw23, raw4, sector_azimuth(l, T, r), d1, d2, d3, d4);
+    }
+#endif
 #if SHELL_TILT_PICK == 1
     {
         // The strip's fibre at its one tangent q: the sums scaled by that tangent's share of the light where re takes

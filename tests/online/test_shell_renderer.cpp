@@ -250,6 +250,121 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     for (std::size_t i = 0; i < half.size(); ++i) EXPECT_NEAR(half[i].y, 0.5f * sh[i].y, 1e-5f * sh[i].y + 1e-7f) << i;
 }
 
+// ShellSettings::key_lights: the brightest light's shadow volume (KeyLightPass, shaders/gl/shell_key_light.comp) holds
+// at each voxel the fibres met from its centre toward the light. Against the same count marched on the CPU through the
+// same strands voxelized at kKeyLightGridSize (DensityGrid::integrate, midpoint rule in quarter-voxel steps), at 2000
+// voxels spread over the volume: the GPU fetches trilinearly with 8-bit sub-texel weights (3 %, as the shadow pass's
+// test above), integrates by Simpson's rule in half-voxel steps and stores half floats (5e-4); 0.05 fibres absolute
+// where the count is small. The light comes from off the grid's axes (−x, a little from above and the front), so the
+// volume's axes are not the grid's; the dim light, first in the list, is not the key light.
+TEST(ShellRenderer, KeyLightVolumeCountsTheFibresTowardTheLight) {
+    auto context = gl::Context::headless();
+    const HairStyle style = two_cluster_style();
+    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
+    SrbfLight dim;
+    dim.L = glm::vec3(1e-3f);  // 0.3 of the key light's energy: it is wider
+    dim.omega = glm::vec3(0.0f, 1.0f, 0.0f);
+    dim.lambda = 0.3f;
+    SrbfLight light;
+    light.L = glm::vec3(1.0f);
+    light.omega = glm::normalize(glm::vec3(-1.0f, 0.2f, 0.1f));
+    light.lambda = 0.02f;
+    const SrbfLight lights[] = {dim, light};
+    renderer.set_lights(lights);
+    const Camera camera = front_camera(renderer);
+    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
+    target.bind();
+    gl::ShellSettings settings;
+    settings.fiber_radius = 0.05f;
+    settings.key_lights = 1;
+    renderer.draw(camera, settings);
+    EXPECT_GT(renderer.timings().shadows_ms, 0.0);
+    const gl::ShellRenderer::KeyVolume v = renderer.read_key_volume(0);
+    ASSERT_EQ(v.light, 1);
+    ASSERT_FALSE(v.fibres.empty());
+    EXPECT_TRUE(renderer.read_key_volume(1).fibres.empty());
+    const DensityGrid grid = voxelize_strands(sample_strands(style, StrandSampling{}), glm::mat3(1.0f), kKeyLightGridSize);
+    const glm::mat4 to_shells = glm::inverse(v.frame);
+    const std::size_t total = v.fibres.size();
+    int deep = 0;
+    double most = 0;
+    for (std::size_t k = 0; k < 2000; ++k) {
+        const std::size_t i = (k * 7919u * 131u + k) % total;
+        const int x = static_cast<int>(i % static_cast<std::size_t>(v.dims.x));
+        const int y = static_cast<int>(i / static_cast<std::size_t>(v.dims.x) % static_cast<std::size_t>(v.dims.y));
+        const int z = static_cast<int>(i / (static_cast<std::size_t>(v.dims.x) * static_cast<std::size_t>(v.dims.y)));
+        const glm::vec3 uvw = (glm::vec3(x, y, z) + 0.5f) / glm::vec3(v.dims);
+        const glm::vec3 p(to_shells * glm::vec4(uvw, 1.0f));
+        const double cpu = 2.0 * 0.05 * grid.integrate(p, light.omega, 10.0f, 0.25f * grid.voxel);
+        EXPECT_NEAR(v.fibres[i], cpu, 0.03 * cpu + 0.05) << "voxel " << x << " " << y << " " << z;
+        if (cpu > 1.0) ++deep;
+        most = std::max(most, cpu);
+    }
+    // Behind c0 a ray meets about 40 fibres (the shadow pass's test above); many of the voxels compared lie in a shadow.
+    std::printf("key light volume: %d of 2000 voxels compared meet more than one fibre, at most %.1f\n", deep, most);
+    EXPECT_GT(deep, 100);
+    EXPECT_GT(most, 20.0);
+    // Made once: the next frame keeps it; another count or radius makes it again.
+    renderer.draw(camera, settings);
+    EXPECT_EQ(renderer.timings().shadows_ms, 0.0);
+    settings.fiber_radius = 0.025f;
+    renderer.draw(camera, settings);
+    EXPECT_GT(renderer.timings().shadows_ms, 0.0);
+    const gl::ShellRenderer::KeyVolume half = renderer.read_key_volume(0);
+    ASSERT_EQ(half.fibres.size(), v.fibres.size());
+    for (std::size_t i = 0; i < total; i += 997) EXPECT_NEAR(half.fibres[i], 0.5f * v.fibres[i], 2e-3f * v.fibres[i] + 1e-4f);
+}
+
+// The key lights are the lights of most energy, |lum(L)| times the solid angle ∫G (srbf_integral), brightest first.
+TEST(ShellRenderer, KeyLightsAreTheLightsOfMostEnergy) {
+    std::vector<SrbfLight> l(4);
+    l[0].L = glm::vec3(1.0f), l[0].lambda = 0.1f;   // narrow: little energy
+    l[1].L = glm::vec3(1.0f), l[1].lambda = 1.0f;   // wide: the most
+    l[2].L = glm::vec3(-2.0f), l[2].lambda = 0.5f;  // negative coefficients count by their size
+    l[3].L = glm::vec3(0.0f), l[3].lambda = 2.0f;   // none
+    EXPECT_EQ(gl::key_light_indices(l, 2), (std::vector<int>{1, 2}));
+    EXPECT_EQ(gl::key_light_indices(l, 4), (std::vector<int>{1, 2, 0, 3}));
+    EXPECT_TRUE(gl::key_light_indices(l, 0).empty());
+    EXPECT_EQ(gl::key_light_indices(std::span(l).first(1), 3), (std::vector<int>{0}));
+    EXPECT_THROW(gl::key_light_indices(l, gl::kMaxKeyLights + 1), Error);
+    EXPECT_THROW(gl::key_light_indices(l, -1), Error);
+}
+
+// Where nothing is in the way (fibres of radius 1e-7: n ≈ 1e-5) and without the own cluster's shadow, a key light lit
+// per fragment, with its weight from the lighting pass's texels and re at its own azimuth, is the light that the sums
+// carried: the image with the brighter of two lights as a key light is the image without, to rounding, on the Fourier
+// path and on the per-fragment path. Bound: two steps of a half float at the brightest pixel (2⁻⁹ of it: the
+// compositing stores half floats; measured one step, the sums' order differs).
+TEST(ShellRenderer, KeyLightsLightAsTheSumsWhereNothingIsInTheWay) {
+    auto context = gl::Context::headless();
+    gl::ShellRenderer renderer(cook_shells(one_cluster_style(), test_index(), glm::mat3(1.0f)));
+    renderer.set_lights(two_lights());
+    const Camera camera = front_camera(renderer);
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.background = glm::vec3(0.0f);
+    s.fiber_radius = 1e-7f;
+    s.own_cluster_shadow = false;
+    for (const bool per_fragment : {false, true}) {
+        s.lighting_per_fragment = per_fragment;
+        s.key_lights = 0;
+        const Image without = renderer.render(camera, s);
+        s.key_lights = 1;
+        const Image with = renderer.render(camera, s);
+        ASSERT_EQ(renderer.read_key_volume(0).light >= 0, true);
+        float brightest = 0, worst = 0;
+        for (std::size_t i = 0; i < without.pixels.size(); ++i) {
+            if (i % 4 == 3) continue;  // RGB (the coverage is the same)
+            brightest = std::max(brightest, without.pixels[i]);
+            worst = std::max(worst, std::abs(with.pixels[i] - without.pixels[i]));
+        }
+        std::printf("%s: brightest %.4g, largest difference with a key light %.3g\n", per_fragment ? "per fragment" : "sums",
+                    brightest, worst);
+        EXPECT_GT(brightest, 0.01f);
+        EXPECT_LE(worst, std::ldexp(brightest, -9));
+    }
+}
+
 TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {
     auto context = gl::Context::headless();
     const HairStyle style = two_cluster_style();
