@@ -121,5 +121,49 @@ TEST(Body, ShadowsTheHairOnlyWhereItBlocksTheLight) {
     for (std::size_t i = 0; i < open.size(); ++i) EXPECT_EQ(again[i], open[i]) << "sample " << i;
 }
 
+// A key light (ShellSettings::key_lights) is shadowed by the body as the shadow pass's lights are: its volume
+// (shell_key_light.comp) adds the body's depth, read on the shadow grid beyond the volume's own box too. The same roof
+// and sun as above: at the right cluster's lighting samples well under the roof the fibres met toward the sun grow by the
+// body's most depth per ray, 20 (kBodyMaxDepth; read at the nearest voxel, so at least 15); at the left cluster's
+// samples nothing changes (to half-float rounding).
+TEST(Body, ShadowsTheKeyLightsToo) {
+    Scene sc;
+    SrbfLight sun;
+    sun.L = glm::vec3(1.0f);
+    sun.omega = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+    sun.lambda = 0.1f;
+    sc.renderer.set_lights(std::vector<SrbfLight>{sun});
+    Camera camera = Camera::orbit(sc.renderer.bounds_min(), sc.renderer.bounds_max(), 0.0f, 0.0f, 64, 48);
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.key_lights = 1;
+    sc.renderer.render(camera, s);
+    const gl::ShellRenderer::KeyVolume open = sc.renderer.read_key_volume(0);
+    ASSERT_FALSE(open.fibres.empty());
+    const BodyMesh roof = quad({1.0f, -2.0f, -2.0f}, {4.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 12.0f});
+    sc.renderer.set_body(&roof);
+    sc.renderer.render(camera, s);
+    const gl::ShellRenderer::KeyVolume shaded = sc.renderer.read_key_volume(0);
+    ASSERT_EQ(shaded.dims, open.dims);  // the volume frames the strands' grid, which the body does not change
+    const auto at = [&](const gl::ShellRenderer::KeyVolume& v, glm::vec3 p) {
+        const glm::ivec3 i = glm::clamp(glm::ivec3(glm::floor(glm::vec3(v.frame * glm::vec4(p, 1.0f)) * glm::vec3(v.dims))),
+                                        glm::ivec3(0), v.dims - 1);
+        return v.fibres[(static_cast<std::size_t>(i.z) * v.dims.y + i.y) * v.dims.x + i.x];
+    };
+    int under = 0, left = 0;
+    for (std::size_t i = 0; i < sc.renderer.prepared().samples.size(); ++i) {
+        const glm::vec3 p = sc.renderer.lighting_sample(i)[0];
+        if (p.x < 0.0f) {
+            EXPECT_NEAR(at(shaded, p), at(open, p), 1e-3f * at(open, p) + 1e-4f) << "sample " << i;
+            ++left;
+        } else if (p.y < -4.0f && p.y > -8.0f) {
+            EXPECT_GT(at(shaded, p) - at(open, p), 15.0f) << "sample " << i;
+            ++under;
+        }
+    }
+    EXPECT_GT(left, 4);
+    EXPECT_GT(under, 2);
+}
+
 }  // namespace
 }  // namespace coif

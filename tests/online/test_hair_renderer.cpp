@@ -207,6 +207,54 @@ TEST(HairRenderer, DrawsEveryInstanceAndRefusesTransformsThatAreNotRigid) {
     EXPECT_THROW(hr.draw(f), Error);
 }
 
+// Key lights (ShellSettings::key_lights) light every instance in its own space: their shadow volumes are made per
+// instance from the lights turned into it, and kept with them. Two copies side by side, the second turned about y, each
+// with a key light: where they do not overlap, the pair draws what each copy draws alone (to 1e-5), the key light
+// changes the image, and a second frame draws the same again (the volumes kept per instance, not remade for the other).
+TEST(HairRenderer, KeyLightsLightEveryInstanceInItsOwnSpace) {
+    Scene scene;
+    HairRenderer& hr = scene.hr;
+    const glm::vec3 size = hr.bounds_max() - hr.bounds_min();
+    Camera cam = scene.cam;
+    cam.fov_y *= 2.0f;
+    const glm::vec3 right = glm::normalize(glm::cross(cam.target - cam.eye, glm::vec3(0, 1, 0)));
+    const glm::vec3 centre = 0.5f * (hr.bounds_min() + hr.bounds_max());
+    const glm::mat4 beside = glm::translate(glm::mat4(1.0f), 1.2f * glm::length(size) * right + centre) *
+                             glm::rotate(glm::mat4(1.0f), 1.0f, glm::vec3(0, 1, 0)) * glm::translate(glm::mat4(1.0f), -centre);
+    gl::ShellSettings keyed;
+    keyed.key_lights = 1;
+    const gl::ShellSettings plain;
+    const auto draw = [&](std::vector<glm::mat4> instances, const gl::ShellSettings& st) {
+        scene.host.clear(1.0f, 1.0f);
+        FrameInputs f = inputs(cam, scene.host, scene.lights);
+        f.instances = instances;
+        f.settings = &st;
+        hr.draw(f);
+        return scene.host.read();
+    };
+    const std::vector<glm::vec4> a = draw({glm::mat4(1.0f)}, keyed), b = draw({beside}, keyed);
+    const std::vector<glm::vec4> both = draw({glm::mat4(1.0f), beside}, keyed), again = draw({glm::mat4(1.0f), beside}, keyed);
+    const std::vector<glm::vec4> unkeyed = draw({glm::mat4(1.0f), beside}, plain);
+    int only_a = 0, only_b = 0;
+    double changed = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (hair(a[i]) && !hair(b[i])) {
+            EXPECT_LT(glm::distance(both[i], a[i]), 1e-5f) << "pixel " << i;
+            ++only_a;
+        } else if (hair(b[i]) && !hair(a[i])) {
+            EXPECT_LT(glm::distance(both[i], b[i]), 1e-5f) << "pixel " << i;
+            ++only_b;
+        }
+        EXPECT_EQ(again[i], both[i]) << "pixel " << i;
+        changed += glm::distance(glm::vec3(both[i]), glm::vec3(unkeyed[i]));
+    }
+    std::printf("pixels of one copy alone: %d and %d; the key light moved the pair's colours by %.3g in all\n", only_a, only_b,
+                changed);
+    EXPECT_GT(only_a, 50);
+    EXPECT_GT(only_b, 50);
+    EXPECT_GT(changed, 0.01);
+}
+
 // The k-buffer compositing draws every instance's depths before it shades any (ShellDraw::Phase): two copies of the
 // hair, one behind and through the other, composite as the exact lists composite them. Shading one copy before the
 // other's depths were in the slots would leave its colours in slots that the other's nearer fragments then shift: drawn
