@@ -138,11 +138,14 @@ struct ShellRenderer::Impl {
     // The key lights' fine grid (ShellSettings::key_lights), made on first use after each change of the strands: the
     // grid's strands as they are now voxelized at kKeyLightGridSize, or the shadow grid itself where the renderer has no
     // strands (set_shadow_grid's).
-    void make_key_grid() {
-        if (key_grid_made) return;
+    // Returns whether it made it now. With motion it is made again each frame the strands moved (docs/renderer.md,
+    // "Key lights": its cost).
+    bool make_key_grid() {
+        if (key_grid_made) return false;
         const Strands& strands = !moved_strands.points.empty() ? moved_strands : shadow_source;
         gpu->set_key_grid(strands.points.empty() ? grid : voxelize_strands(strands, glm::mat3(1.0f), kKeyLightGridSize));
         key_grid_made = true;
+        return true;
     }
 };
 
@@ -465,7 +468,8 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     }
     // The key lights' shadow volumes: only when the lights, the strands, the radius or their count changed.
     if (!floor_only && s.shadows && s.key_lights > 0 && gpu.light_count > 0) {
-        m.make_key_grid();
+        const auto grid_start = Clock::now();
+        if (m.make_key_grid()) timings_.shadows_ms += wall_ms_since(grid_start);
         timings_.shadows_ms += m.key_light.run(gpu, s.key_lights, 2.0f * radius);
     }
 

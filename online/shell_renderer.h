@@ -94,7 +94,7 @@ struct OwnClusterDepth {
 // calls (GL_TIME_ELAPSED is not used: llvmpipe's rasteriser runs on after a query ends; measured, a lighting
 // pass of 0.5 ms read 430 ms).
 struct ShellTimings {
-    double shadows_ms = 0;  // wall time of the shadow pass and the key lights' volumes (glFinish); 0 when cached
+    double shadows_ms = 0;  // wall time of the shadow pass and the key lights' grid and volumes (glFinish); 0 when cached
     double lighting_wall_ms = 0, shells_wall_ms = 0;  // with ShellSettings::timed, else 0
     double resolve_wall_ms = 0;  // of shells_wall_ms, the exact or weighted compositing's resolve (timed)
     std::size_t clusters_drawn = 0;  // clusters in the view (ShellSettings::cull), every instance counted
