@@ -16,6 +16,27 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A grid of the strands' M (ShellGpu::set_grid's or set_key_grid's) on texture units 0 and 1, as the shadow marches read
+// it (u_density, u_density_off, u_grid_min, u_grid_extent), and the fibres' diameter u_width.
+void bind_density(const Program& p, const Texture& density, const Texture& density_off, glm::vec3 origin, glm::vec3 extent,
+                  float fibre_width) {
+    glBindTextureUnit(0, density.id());
+    glUniform1i(p.uniform("u_density"), 0);
+    glBindTextureUnit(1, density_off.id());
+    glUniform1i(p.uniform("u_density_off"), 1);
+    glUniform3fv(p.uniform("u_grid_min"), 1, &origin.x);
+    glUniform3fv(p.uniform("u_grid_extent"), 1, &extent.x);
+    glUniform1f(p.uniform("u_width"), fibre_width);
+}
+
+// The body on the shadow grid (SHADOW_BODY) on texture unit 2, with its optical depth per unit length and per ray.
+void bind_body(const Program& p, const ShellGpu& gpu) {
+    glBindTextureUnit(2, gpu.body.id());
+    glUniform1i(p.uniform("u_body"), 2);
+    glUniform1f(p.uniform("u_body_opacity"), kBodyOpacity / gpu.voxel);
+    glUniform1f(p.uniform("u_body_max_depth"), kBodyMaxDepth);
+}
+
 }  // namespace
 
 // ---- ShellGpu --------------------------------------------------------------------------------------
@@ -172,20 +193,9 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, boo
     if (gpu.body_on && !with_body_) with_body_ = std::make_unique<Program>(std::vector<std::string>{"shaders/gl/shell_shadow.comp"}, std::vector<std::string>{"SHADOW_BODY 1"});
     const Program& p = gpu.body_on ? *with_body_ : program_;
     p.use();
-    if (gpu.body_on) {
-        glBindTextureUnit(2, gpu.body.id());
-        glUniform1i(p.uniform("u_body"), 2);
-        glUniform1f(p.uniform("u_body_opacity"), kBodyOpacity / gpu.voxel);
-        glUniform1f(p.uniform("u_body_max_depth"), kBodyMaxDepth);
-    }
-    glBindTextureUnit(0, gpu.density.id());
-    glUniform1i(p.uniform("u_density"), 0);
-    glBindTextureUnit(1, gpu.density_off.id());
-    glUniform1i(p.uniform("u_density_off"), 1);
-    glUniform3fv(p.uniform("u_grid_min"), 1, &gpu.grid_origin.x);
-    glUniform3fv(p.uniform("u_grid_extent"), 1, &gpu.grid_extent.x);
+    if (gpu.body_on) bind_body(p, gpu);
+    bind_density(p, gpu.density, gpu.density_off, gpu.grid_origin, gpu.grid_extent, fibre_width);
     glUniform1f(p.uniform("u_step"), gpu.voxel);
-    glUniform1f(p.uniform("u_width"), fibre_width);
     glUniform1i(p.uniform("u_sample_count"), static_cast<GLint>(gpu.sample_count));
     glUniform1i(p.uniform("u_light_count"), gpu.light_count);
     glUniform1i(p.uniform("u_rays"), kShadowRays);
@@ -248,21 +258,12 @@ double KeyLightPass::run(ShellGpu& gpu, int count, float fibre_width) {
                                                std::vector<std::string>{"SHADOW_BODY 1"});
     const Program& p = gpu.body_on ? *with_body_ : program_;
     p.use();
-    glBindTextureUnit(0, gpu.key_density.id());
-    glUniform1i(p.uniform("u_density"), 0);
-    glBindTextureUnit(1, gpu.key_density_off.id());
-    glUniform1i(p.uniform("u_density_off"), 1);
-    glUniform3fv(p.uniform("u_grid_min"), 1, &gpu.key_grid_origin.x);
-    glUniform3fv(p.uniform("u_grid_extent"), 1, &gpu.key_grid_extent.x);
-    glUniform1f(p.uniform("u_width"), fibre_width);
-    if (gpu.body_on) {
-        glBindTextureUnit(2, gpu.body.id());
-        glUniform1i(p.uniform("u_body"), 2);
+    bind_density(p, gpu.key_density, gpu.key_density_off, gpu.key_grid_origin, gpu.key_grid_extent, fibre_width);
+    if (gpu.body_on) {  // read on the shadow grid, which holds it
+        bind_body(p, gpu);
         glUniform3fv(p.uniform("u_body_min"), 1, &gpu.grid_origin.x);
         glUniform3fv(p.uniform("u_body_extent"), 1, &gpu.grid_extent.x);
         glUniform1f(p.uniform("u_body_step"), gpu.voxel);
-        glUniform1f(p.uniform("u_body_opacity"), kBodyOpacity / gpu.voxel);
-        glUniform1f(p.uniform("u_body_max_depth"), kBodyMaxDepth);
     }
     for (int m = 0; m < k.count; ++m) {
         const SrbfLight& light = gpu.light_values[static_cast<std::size_t>(keys[static_cast<std::size_t>(m)])];

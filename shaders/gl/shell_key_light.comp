@@ -75,7 +75,6 @@ void main() {
     // The column's end: half a voxel beyond the last centre, where the volume (which holds the fine grid, whose border
     // voxels are empty) holds no fibres.
     float above = projected(base + (float(u_dims.z) - 0.5) * h * l, dd, doff);  // at the last centre
-    fibres = 0.0;
     for (int k = u_dims.z - 1; k >= 0; --k) {
         vec3 p = base + (float(k) + 0.5) * h * l;
         float here = projected(p, dd, doff);

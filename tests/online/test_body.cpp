@@ -75,13 +75,18 @@ TEST(Body, HidesTheHairBehindItAndNothingElse) {
     EXPECT_GT(wall_colour.x, 0.0f);
 }
 
+// A narrow light from above at 45° towards +z.
+SrbfLight sun() {
+    SrbfLight l;
+    l.L = glm::vec3(1.0f);
+    l.omega = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+    l.lambda = 0.1f;
+    return l;
+}
+
 TEST(Body, ShadowsTheHairOnlyWhereItBlocksTheLight) {
     Scene sc;
-    SrbfLight sun;  // from above at 45° towards +z, narrow
-    sun.L = glm::vec3(1.0f);
-    sun.omega = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
-    sun.lambda = 0.1f;
-    sc.renderer.set_lights(std::vector<SrbfLight>{sun});
+    sc.renderer.set_lights(std::vector<SrbfLight>{sun()});
     Camera camera = Camera::orbit(sc.renderer.bounds_min(), sc.renderer.bounds_max(), 0.0f, 0.0f, 64, 48);
     gl::ShellSettings s;
     s.samples = 1;
@@ -128,11 +133,7 @@ TEST(Body, ShadowsTheHairOnlyWhereItBlocksTheLight) {
 // samples nothing changes (to half-float rounding).
 TEST(Body, ShadowsTheKeyLightsToo) {
     Scene sc;
-    SrbfLight sun;
-    sun.L = glm::vec3(1.0f);
-    sun.omega = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
-    sun.lambda = 0.1f;
-    sc.renderer.set_lights(std::vector<SrbfLight>{sun});
+    sc.renderer.set_lights(std::vector<SrbfLight>{sun()});
     Camera camera = Camera::orbit(sc.renderer.bounds_min(), sc.renderer.bounds_max(), 0.0f, 0.0f, 64, 48);
     gl::ShellSettings s;
     s.samples = 1;
