@@ -116,7 +116,9 @@ struct ShellSettings {
     // The brightest lights (by |lum(L_j)| times their solid angle), up to 4, lit per fragment with their own shadow: the
     // fibres met from the fragment itself toward the light, read from a volume aligned with the light and made from a
     // finer grid of the strands (online/shell_passes.h KeyLightPass), instead of through the lighting pass's sums with
-    // the shadow marched from the cluster's axis and the own cluster's factor. The rest stay in the sums. 0: none.
+    // the shadow marched from the cluster's axis and the own cluster's factor. The rest stay in the sums. 0: none. The
+    // volume follows the light's centre direction alone, where the shadow pass spreads 7 rays over its lobe: a wide
+    // light's soft shadow is drawn as a narrow one's.
     // docs/quality.md ("Key lights") measures the image and the cost.
     int key_lights = 0;
     // The k-buffer compositing's slots per pixel (Compositing::kbuffer, online/weighted_blend.h): its k nearest fragments

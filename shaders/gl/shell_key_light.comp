@@ -9,7 +9,8 @@
 // (shaders/lighting/own_cluster.glsl) models the side. docs/quality.md ("Key lights") measures it.
 //
 // With SHADOW_BODY the body's optical depth is added as the shadow pass adds it (at most u_body_max_depth per ray),
-// read on the shadow grid that holds it, from the far side of the grid (beyond the column's end) inward.
+// read on the shadow grid that holds it, the stretch beyond the column's end toward the light included (the body can
+// reach beyond the hair's box).
 layout(local_size_x = 8, local_size_y = 8) in;
 #ifndef SHADOW_BODY
 #define SHADOW_BODY 0
