@@ -28,4 +28,9 @@ COIF_FN float sector_azimuth(vec3 d, vec3 T, vec3 r) {
     return (abs(x) + abs(y) > 1e-12) ? atan(y, x) : 0.0;
 }
 
+// A light's spread as an in-plane angle about the unit tangent T: λ' = λ over the length of its unit direction l
+// projected on the normal plane of T. Harmonic k of the light's azimuth is damped by d_k = exp(−k² λ'² / 4) (the Fourier
+// coefficient of a circular Gaussian of bandwidth λ' for small λ').
+COIF_FN float light_spread(vec3 l, float lambda, vec3 T) { return lambda / max(length(l - dot(l, T) * T), 1e-3f); }
+
 #endif

@@ -77,13 +77,7 @@ vec3 shell_light_weight_fibres(HairParams hp, vec3 V, vec3 T, vec3 r0, vec3 m, v
     return w * (1.0 / float(SHELL_TANGENTS));
 }
 
-// λ' = λ_j over the length of the light direction projected on the normal plane of T: the light's
-// spread as an in-plane angle; harmonic k of the light's azimuth is damped by d_k = exp(−k² λ'² / 4)
-// (the Fourier coefficient of a circular Gaussian of bandwidth λ' for small λ').
-float shell_light_spread(int j, vec3 T) {
-    vec3 l = lights[j].direction_lambda.xyz;
-    float proj = length(l - dot(l, T) * T);
-    return lights[j].direction_lambda.w / max(proj, 1e-3);
-}
+// Light j's spread as an in-plane angle λ' (sector_frame.glsl light_spread).
+float shell_light_spread(int j, vec3 T) { return light_spread(lights[j].direction_lambda.xyz, lights[j].direction_lambda.w, T); }
 
 #endif

@@ -247,10 +247,10 @@ float re_at(vec3 c01, vec4 c23, vec2 c4, float th, float d1, float d2, float d3,
            d3 * (c23.z * cos(3.0 * th) + c23.w * sin(3.0 * th)) + d4 * (c4.x * cos(4.0 * th) + c4.y * sin(4.0 * th));
 }
 
-// The dampings d_1..d_4 of re's harmonics for a light of bandwidth λ along l (unit) at a fibre of tangent T:
-// d_k = exp(−k² λ'² / 4), λ' = λ / |l projected on the normal plane of T| (shell_light.glsl shell_light_spread).
+// The dampings d_k = exp(−k² λ'² / 4), k = 1..4, of re's harmonics for a light of bandwidth λ along l (unit) at a fibre
+// of tangent T (sector_frame.glsl light_spread).
 void light_dampings(vec3 l, float lambda, vec3 T, out float d1, out float d2, out float d3, out float d4) {
-    float lp = lambda / max(length(l - dot(l, T) * T), 1e-3);
+    float lp = light_spread(l, lambda, T);
     d1 = exp(-0.25 * lp * lp);
     d2 = d1 * d1 * d1 * d1;
     d3 = d2 * d2 * d1;
