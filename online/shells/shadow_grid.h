@@ -48,8 +48,9 @@ struct DensityGrid {
     float integrate(glm::vec3 p, glm::vec3 d, float length, float step) const;
 };
 
-// √(tr M (tr M − ωᵀMω)) for M given as (xx, yy, zz, xy) and (xz, yz), the formula shaders/gl/shell_shadow.comp
-// repeats (it is two lines; a test compares the GPU's march with integrate()).
+// √(tr M (tr M − ωᵀMω)) for M given as (xx, yy, zz, xy) and (xz, yz), the formula shaders/gl/density_march.glsl
+// repeats for the GPU's marches (it is two lines; tests compare the shadow pass and the key lights' volumes with
+// integrate()).
 float projected_length_density(glm::vec4 diagonal_xy, glm::vec2 off_diagonal, glm::vec3 omega);
 
 inline constexpr int kShadowGridSize = 64;  // shadow grid voxels along the hair's longest axis (docs/renderer.md: error and cost)

@@ -16,6 +16,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #define SHADOW_BODY 0
 #endif
 
+#include "shaders/gl/density_march.glsl"
+
 layout(r16f, binding = 0) writeonly uniform image3D u_out;
 
 uniform sampler3D u_density;      // the fine grid's M per unit volume: (xx, yy, zz, xy)
@@ -38,21 +40,15 @@ uniform float u_body_opacity;     // optical depth per world unit through a body
 uniform float u_body_max_depth;
 #endif
 
-float projected(vec3 p, vec4 dd, vec2 doff) {
-    vec3 uvw = (p - u_grid_min) / u_grid_extent;
-    vec4 m = textureLod(u_density, uvw, 0.0);
-    float trace = m.x + m.y + m.z;
-    float along = dot(m, dd) + dot(textureLod(u_density_off, uvw, 0.0).rg, doff);
-    return sqrt(max(trace * (trace - along), 0.0));
+float projected(vec3 p, MarchDirection d) {
+    return projected_density(u_density, u_density_off, (p - u_grid_min) / u_grid_extent, d);
 }
 
 void main() {
     ivec2 column = ivec2(gl_GlobalInvocationID.xy);
     if (column.x >= u_dims.x || column.y >= u_dims.y) return;
     vec3 l = u_l;
-    // dᵀMd = m·(dx², dy², dz², 2 dx dy) + o·(2 dx dz, 2 dy dz) (shadow_grid.cpp projected_length_density).
-    vec4 dd = vec4(l * l, 2.0 * l.x * l.y);
-    vec2 doff = vec2(2.0 * l.x * l.z, 2.0 * l.y * l.z);
+    MarchDirection md = march_direction(l);
     vec3 base = u_origin + (float(column.x) + 0.5) * u_h * u_e1 + (float(column.y) + 0.5) * u_h * u_e2;
     float h = u_h;
     float fibres = 0.0;  // ∫ projected length density from the column's end to the current voxel's centre
@@ -60,11 +56,9 @@ void main() {
 #if SHADOW_BODY
     {   // The body beyond the column's end toward the light, to where the ray leaves the shadow grid.
         vec3 p = base + float(u_dims.z) * h * l;
-        vec3 inv = 1.0 / vec3(abs(l.x) > 1e-8 ? l.x : 1e-8, abs(l.y) > 1e-8 ? l.y : 1e-8, abs(l.z) > 1e-8 ? l.z : 1e-8);
-        vec3 t0 = (u_body_min - p) * inv;
-        vec3 t1 = (u_body_min + u_body_extent - p) * inv;
-        float a = max(max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z)), 0.0);
-        float b = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
+        float a;
+        float b;
+        ray_box_span(p, l, u_body_min, u_body_extent, a, b);
         if (b > a) {
             int n = int(ceil((b - a) / u_body_step));
             float s = (b - a) / float(n);
@@ -75,13 +69,13 @@ void main() {
 #endif
     // The column's end: half a voxel beyond the last centre, where the volume (which holds the fine grid, whose border
     // voxels are empty) holds no fibres.
-    float above = projected(base + (float(u_dims.z) - 0.5) * h * l, dd, doff);  // at the last centre
+    float above = projected(base + (float(u_dims.z) - 0.5) * h * l, md);  // at the last centre
     for (int k = u_dims.z - 1; k >= 0; --k) {
         vec3 p = base + (float(k) + 0.5) * h * l;
-        float here = projected(p, dd, doff);
+        float here = projected(p, md);
         if (k < u_dims.z - 1) {
             // Simpson's rule over the voxel between this centre and the one above.
-            float middle = projected(p + 0.5 * h * l, dd, doff);
+            float middle = projected(p + 0.5 * h * l, md);
             fibres += h / 6.0 * (here + 4.0 * middle + above);
 #if SHADOW_BODY
             body += h * 0.5 * (textureLod(u_body, (p - u_body_min) / u_body_extent, 0.0).r +

@@ -44,9 +44,8 @@ vec3 shell_light_forward(SrbfPoint p, float d_f, int j, float fibres, out vec3 l
     vec4 fw = fetch_ms_forward(theta_j, p.hp.sigma_a);
     loss = vec3(1.0) - fw.xyz;
     if (SRBF_MULTIPLE == 0) return vec3(0.0);
-    float scatterings = fibres * (fw.x + fw.y + fw.z) / 3.0;
     return lights[j].radiance.rgb * (d_f * srbf_integral(lambda_j)) *
-           srbf_multiple(p.hp, SRBF_CONFIG, p.f0123, p.f45, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j, scatterings * fw.w);
+           srbf_forward_multiple(p.hp, SRBF_CONFIG, p.f0123, p.f45, p.theta_o, p.phi_o, theta_j, phi_j, lambda_j, fibres, fw);
 }
 
 // The fibres' tangents about the cluster's (shaders/lighting/fibre_tangents.glsl): SHELL_TANGENTS 4, the mean

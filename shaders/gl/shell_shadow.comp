@@ -30,6 +30,7 @@ layout(local_size_x = 64) in;
 #endif
 
 #include "shaders/envmap.glsl"
+#include "shaders/gl/density_march.glsl"
 #include "shaders/gl/lighting_samples.glsl"
 #include "shaders/lighting/luts_gl.glsl"
 #include "shaders/lighting/own_cluster.glsl"
@@ -63,27 +64,18 @@ const float GOLDEN_ANGLE = 2.39996322973;  // π (3 − √5): successive rays' 
 
 // (the fibres' projected length along the ray, the body's optical depth along it)
 vec2 optical_depth(vec3 p, vec3 d) {
-    vec3 inv = 1.0 / vec3(abs(d.x) > 1e-8 ? d.x : 1e-8, abs(d.y) > 1e-8 ? d.y : 1e-8, abs(d.z) > 1e-8 ? d.z : 1e-8);
-    vec3 t0 = (u_grid_min - p) * inv;
-    vec3 t1 = (u_grid_min + u_grid_extent - p) * inv;
-    vec3 tn = min(t0, t1);
-    vec3 tf = max(t0, t1);
-    float a = max(max(max(tn.x, tn.y), tn.z), 0.0);
-    float b = min(min(tf.x, tf.y), tf.z);
+    float a;
+    float b;
+    ray_box_span(p, d, u_grid_min, u_grid_extent, a, b);
     if (b <= a) return vec2(0.0);
     int n = int(ceil((b - a) / u_step));
     float h = (b - a) / float(n);
     float sum = 0.0;
     float body = 0.0;
-    // dᵀMd = m·(dx², dy², dz², 2 dx dy) + o·(2 dx dz, 2 dy dz) (shadow_grid.cpp projected_length_density).
-    vec4 dd = vec4(d * d, 2.0 * d.x * d.y);
-    vec2 doff = vec2(2.0 * d.x * d.z, 2.0 * d.y * d.z);
+    MarchDirection md = march_direction(d);
     for (int k = 0; k < n; ++k) {
         vec3 uvw = (p + d * (a + (float(k) + 0.5) * h) - u_grid_min) / u_grid_extent;
-        vec4 m = textureLod(u_density, uvw, 0.0);
-        float trace = m.x + m.y + m.z;
-        float along = dot(m, dd) + dot(textureLod(u_density_off, uvw, 0.0).rg, doff);
-        sum += sqrt(max(trace * (trace - along), 0.0));
+        sum += projected_density(u_density, u_density_off, uvw, md);
 #if SHADOW_BODY
         body += textureLod(u_body, uvw, 0.0).r;
 #endif

@@ -51,6 +51,15 @@ COIF_FN vec3 srbf_single_lobes(HairParams hp, LightingConfig cfg, vec4 f0123, ve
     return m;
 }
 
+// The forward-scattered light's multiple scattering of one light per unit of its share d_f max(T_f − T̃, 0) and per
+// unit of the light's power (srbf_shadowed_multiple's second term), for `fibres` met on the way, with `fw` the fibres'
+// forward scattering fetch_ms_forward(θ_j, σa): the spread of n ā_f scatterings.
+COIF_FN vec3 srbf_forward_multiple(HairParams hp, LightingConfig cfg, vec4 f0123, vec4 f45, float theta_o, float phi_o,
+                                   float theta_j, float phi_j, float lambda_j, float fibres, vec4 fw) {
+    float scatterings = fibres * (fw.x + fw.y + fw.z) / 3.0;
+    return srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, scatterings * fw.w);
+}
+
 // The multiple-scattering part (direct local term plus forward-scattered light) of one light, per
 // unit radiance L_j (the light's power srbf_integral(λ_j) times 𝓜^G, 𝓜^L; see the header);
 // `direct` = T̃, `fibres` = n.
@@ -64,9 +73,8 @@ COIF_FN vec3 srbf_shadowed_multiple(HairParams hp, LightingConfig cfg, vec4 f012
         vec3 a_f = vec3(fw.x, fw.y, fw.z);
         vec3 T_f = exp(-fibres * (vec3(1.0) - a_f));
         vec3 share = d_f * max(T_f - vec3(direct), vec3(0.0));
-        float scatterings = fibres * (a_f.x + a_f.y + a_f.z) / 3.0;
         if (max(max(share.x, share.y), share.z) > MS_NEGLIGIBLE)
-            ms += share * srbf_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, scatterings * fw.w);
+            ms += share * srbf_forward_multiple(hp, cfg, f0123, f45, theta_o, phi_o, theta_j, phi_j, lambda_j, fibres, fw);
     }
     return srbf_integral(lambda_j) * ms;
 }
