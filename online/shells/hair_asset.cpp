@@ -245,11 +245,9 @@ std::vector<std::byte> hair_asset_bytes(const CookedShells& c) {
     w.section("GDIA", std::span<const glm::vec4>(c.grid.diagonal_xy));
     w.section("GOFF", std::span<const glm::vec2>(c.grid.off_diagonal));
     w.section("ROOT", std::span<const glm::vec3>(c.roots));
-    // The grid's strands only for hair that moves with a skeleton: a still one's asset does not carry (or load) them.
-    const bool moves = c.skinning.has_value();
-    w.section("SPNT", moves ? std::span<const glm::vec3>(c.shadow_source.points) : std::span<const glm::vec3>());
-    w.section("SOFF", moves ? std::span<const std::uint32_t>(c.shadow_source.offsets) : std::span<const std::uint32_t>());
-    w.section("SCLU", moves ? std::span<const std::uint32_t>(c.shadow_strand_cluster) : std::span<const std::uint32_t>());
+    w.section("SPNT", std::span<const glm::vec3>(c.shadow_source.points));
+    w.section("SOFF", std::span<const std::uint32_t>(c.shadow_source.offsets));
+    w.section("SCLU", std::span<const std::uint32_t>(c.shadow_strand_cluster));
     w.section("SKIN", c.skinning ? std::span<const BoneInfluence>(c.skinning->clusters) : std::span<const BoneInfluence>());
     std::vector<std::byte>& out = w.out;
     std::memcpy(out.data(), kMagic, 8);

@@ -1,13 +1,15 @@
 #pragma once
 // A cooked hairstyle: everything the shell renderer (online/shell_renderer.h) draws a style with, as data
 // (CookedShells), and its file, the `.coif` asset that `coif bake` writes and the runtime loads without the HRIR
-// database, FLANN or the style's strands. Cooking from a style is online/scene/cook.h.
+// database or FLANN. Cooking from a style is online/scene/cook.h.
 //
-// The `.coif` file, version 3 (3: LightingSample carries the cross-section's ellipse in its w components). Little-endian, IEEE-754 floats, every section 8-byte aligned:
+// The `.coif` file, version 4 (3: LightingSample carries the cross-section's ellipse in its w components; 4: every asset
+// carries its grid's strands, which the key lights' fine grid is made from). Little-endian, IEEE-754 floats, every
+// section 8-byte aligned:
 //
 //   byte 0   8  magic "COIFHAIR"
 //   byte 8   u32 format version (kHairAssetVersion)
-//   byte 12  u32 section count (20 in version 3)
+//   byte 12  u32 section count (20 in version 4)
 //   byte 16  u64 file size in bytes
 //   byte 24  u64 XXH3-64 checksum of bytes 32 … end (models/core/checksum.h)
 //   byte 32  the sections, in this order, each a u32 tag (4 ASCII characters), u32 element size in bytes, u64
@@ -43,8 +45,8 @@
 //     SPNT 12        vec3 per point of the shadow strands (CookedShells::shadow_source: the points)
 //     SOFF  4        u32 per shadow strand, and one more: where its points start (the last: the point count)
 //     SCLU  4        u32 per shadow strand: its cluster
-//                    (these three are empty unless the style has bone weights: a still hair's asset does not carry
-//                    the 3 MB of the default style's strands, nor load them)
+//                    (the key lights' fine grid, online/shells/shadow_grid.h kKeyLightGridSize, is made from them
+//                    when first drawn, as from the style's strands cooked live; 3 MB of the default style's)
 //     SKIN 32        BoneInfluence per cluster (i32 bone × 4 into "bones", f32 weight × 4), or none (no "bones")
 //
 // What the sections imply is not stored: each cluster's index (the per-instance attribute 0, 1, 2, …) and the
@@ -77,7 +79,7 @@
 
 namespace coif {
 
-inline constexpr std::uint32_t kHairAssetVersion = 3;
+inline constexpr std::uint32_t kHairAssetVersion = 4;
 
 struct CookedShells {
     std::string name;             // the style's

@@ -168,7 +168,12 @@ void splat_strands(const DensityGrid& g, glm::ivec3 first, std::vector<std::arra
 void GridSums::add(const Strands& strands, const glm::mat3& orientation, int sign) {
     const std::size_t n = strands.strand_count();
     // Integer sums add up alike in any order: a large set is split among threads, each into its own sums, added after.
-    const std::size_t parts = strands.points.size() < 100000 ? 1 : static_cast<std::size_t>(std::min(hardware_threads(), 4));
+    // Each thread's sums are a copy of the grid, so the split pays only where the points outnumber the voxels: the
+    // default style's 254 564 points take 43 ms on 2 threads against 49 ms on one into its 64-voxel shadow grid (116 466
+    // voxels), and 186 ms against 95 ms into the key lights' 128-voxel grid (998 976 voxels).
+    const std::size_t points = strands.points.size();
+    const std::size_t parts =
+        points < 100000 || points < sums_.size() ? 1 : static_cast<std::size_t>(std::min(hardware_threads(), 4));
     if (parts == 1) {
         splat_strands(frame_, first_, sums_, strands, orientation, sign, 0, n);
         return;

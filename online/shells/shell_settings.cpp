@@ -92,11 +92,11 @@ namespace {
 template <class Settings>
 auto preset_choices(Settings& s) {
     return std::tie(s.compositing, s.neighbours, s.fourier_order, s.lighting_step, s.tangent_spread, s.lod_pixels, s.light_cull,
-                    s.kbuffer_slots, s.fold_level);
+                    s.kbuffer_slots, s.fold_level, s.key_lights);
 }
 auto preset_choices(const QualityPreset& p) {
     return std::tuple(p.compositing, p.neighbours, p.fourier_order, p.lighting_step, p.one_tangent ? 0.0f : -1.0f, p.lod_pixels,
-                      p.light_cull, p.kbuffer_slots, p.fold_level);
+                      p.light_cull, p.kbuffer_slots, p.fold_level, p.key_lights);
 }
 }  // namespace
 
@@ -120,7 +120,7 @@ ParamTable<ShellSettings> make_table() {
     // nothing.
     Param<S> quality{"quality", ParamKind::choice, "", 0, 0, false,
                      "a preset of the choices below (compositing, neighbours, fourier_order, lighting_step, "
-                     "tangent_spread_deg, lod_pixels, light_cull, kbuffer_slots, fold_level); later keys override it",
+                     "tangent_spread_deg, lod_pixels, light_cull, kbuffer_slots, fold_level, key_lights); later keys override it",
                      {}, {}, {}, {}};
     quality.names = quality_names();
     quality.names.emplace_back("custom");
@@ -204,8 +204,9 @@ ParamTable<ShellSettings> make_table() {
                               "at most this fraction (0: every light)",
                               [](auto& s) -> auto& { return s.light_cull; }));
     t.push_back(int_param<S>("key_lights", 0, kMaxKeyLights,
-                             "the brightest lights lit per fragment, each with the shadow from the fragment itself toward "
-                             "it (a volume per light made from a finer grid; 0: every light through the lighting sums)",
+                             "the brightest lights lit apart, each with the shadow from the shells' own vertices toward it (a "
+                             "volume per light made from a finer grid of the strands; 0: every light through the "
+                             "lighting sums)",
                              [](auto& s) -> auto& { return s.key_lights; }));
     return t;
 }

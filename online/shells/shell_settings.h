@@ -113,14 +113,15 @@ struct ShellSettings {
     // light, and so do more than 128 lights (online/shell_passes.h kMaxCulledLights). docs/renderer.md ("Lights culled
     // per lighting sample") measures the cost and the error.
     float light_cull = 0.05f;
-    // The brightest lights (by |lum(L_j)| times their solid angle), up to 4, lit per fragment with their own shadow: the
-    // fibres met from the fragment itself toward the light, read from a volume aligned with the light and made from a
-    // finer grid of the strands (online/shell_passes.h KeyLightPass), instead of through the lighting pass's sums with
-    // the shadow marched from the cluster's axis and the own cluster's factor. The rest stay in the sums. 0: none. The
+    // The brightest lights (by |lum(L_j)| times their solid angle), up to 4, lit with their own shadow: the fibres met
+    // from each vertex of the shells toward the light (from each fragment with lighting_per_fragment), read from a
+    // volume aligned with the light and made from a finer grid of the strands (online/shell_passes.h KeyLightPass),
+    // instead of through the lighting pass's sums with the shadow marched from the cluster's axis and the own cluster's
+    // factor. The rest stay in the sums. 0: none. The
     // volume follows the light's centre direction alone, where the shadow pass spreads 7 rays over its lobe: a wide
     // light's soft shadow is drawn as a narrow one's.
-    // docs/quality.md ("Key lights") measures the image and the cost.
-    int key_lights = 0;
+    // docs/quality.md ("Key lights") measures the image and the cost. A preset's choice: 1 but at `low`.
+    int key_lights = 1;
     // The k-buffer compositing's slots per pixel (Compositing::kbuffer, online/weighted_blend.h): its k nearest fragments
     // are composited exactly, 1..kMaxKBufferSlots. docs/renderer.md ("Decision 4") measures the cost and the error.
     int kbuffer_slots = 8;
@@ -142,26 +143,28 @@ struct QualityPreset {
     float light_cull;  // ShellSettings::light_cull
     int kbuffer_slots; // ShellSettings::kbuffer_slots (with the k-buffer compositing)
     int fold_level;    // ShellSettings::fold_level
+    int key_lights;    // ShellSettings::key_lights
 };
 inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::low, "low", "weighted blended compositing (bounded memory), one record per sector, re's first harmonic, a "
                           "quarter of the lighting samples where the clusters are smooth, fibres lit along the axis, "
                           "coarse meshes, layers drawn in pairs, the dimmest lights carrying 20 % of each sample's light skipped "
                           "(previews, dragging)",
-     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f, 8, 0},
+     Compositing::weighted, 1, 1, 4, true, 48.0f, 0.2f, 8, 0, 0},
     {Quality::medium, "medium",
      "k-buffer compositing (the nearest 4 fragments of each pixel exact; bounded memory), one record per sector, re's "
      "first harmonic, a quarter of the lighting samples where the clusters are smooth, coarser meshes, layers drawn in "
-     "pairs, the dimmest lights carrying 10 % of each sample's light skipped",
-     Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4, 0},
+     "pairs, the dimmest lights carrying 10 % of each sample's light skipped, the brightest light lit per fragment with "
+     "its own shadow",
+     Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4, 0, 1},
     {Quality::high, "high",
      "exact compositing, one record per sector, half the lighting samples where the clusters are smooth, meshes "
-     "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped (the "
-     "default)",
-     Compositing::exact, 1, 2, 2, false, 24.0f, 0.05f, 8, 3},
-    {Quality::full, "full", "exact compositing, one record per sector, every lighting sample, full meshes, every light: the "
-                            "reference of the others",
-     Compositing::exact, 1, 2, 1, false, 0.0f, 0.0f, 8, 3},
+     "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped, the "
+     "brightest light lit per fragment with its own shadow (the default)",
+     Compositing::exact, 1, 2, 2, false, 24.0f, 0.05f, 8, 3, 1},
+    {Quality::full, "full", "exact compositing, one record per sector, every lighting sample, full meshes, every light, the "
+                            "brightest light lit per fragment with its own shadow: the reference of the others",
+     Compositing::exact, 1, 2, 1, false, 0.0f, 0.0f, 8, 3, 1},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
 const QualityPreset& quality_preset(Quality q);

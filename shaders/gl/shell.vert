@@ -44,6 +44,10 @@ out vec4 v_L13;
 #if defined(SHELL_OWN) && SHELL_OWN == 2
 out vec3 v_L9;   // texel 9: the fibres' forward loss 1 − ā_f
 #endif
+#if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
+#include "shaders/gl/key_light_volume.glsl"
+out vec3 v_key_weight[SHELL_KEY_LIGHTS];  // each key light's weight at the vertex (key_light_weight)
+#endif
 #endif
 
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
@@ -86,6 +90,12 @@ void main() {
 #endif
 #if defined(SHELL_OWN) && SHELL_OWN == 2
     v_L9 = lighting_fetch(a_texcoord.y, inst.info.y, 9).xyz;
+#endif
+#if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
+    for (int m = 0; m < SHELL_KEY_LIGHTS; ++m)
+        v_key_weight[m] = key_light_weight(m, world.xyz, lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb,
+                                           lighting_fetch(a_texcoord.y, inst.info.y, 15 + 3 * m).rgb,
+                                           lighting_fetch(a_texcoord.y, inst.info.y, 16 + 3 * m).rgb);
 #endif
 #endif
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1

@@ -38,11 +38,13 @@
 //   SHELL_SECTOR_PICK 1: each strip takes the records of one of its HSV's two sectors, drawn against γ
 //                     (ShellSettings::sector_per_strip); 0: both sectors' records mixed by γ (004 eq. 7)
 //   SHELL_KEY_LIGHTS  K > 0: the key lights (ShellSettings::key_lights), left out of the lighting sums, each lit here
-//                     with the fibres met from this fragment toward it (its shadow volume, shell_key_light.comp) and
-//                     without the own cluster's factor (the volume counts the own cluster's fibres): its weight from the
-//                     lighting pass's texels 14 + 3m .. 16 + 3m, w = D T̃ + max(T_f − T̃, 0) F with T̃ = exp(−n),
-//                     T_f = exp(−n (1 − ā_f)), times re at its own azimuth. (Without the own cluster's shadow, eq. 12's
-//                     factor still takes all the light.)
+//                     with the fibres met toward it (its shadow volume, shell_key_light.comp) and without the own
+//                     cluster's factor (the volume counts the own cluster's fibres): its weight from the lighting
+//                     pass's texels 14 + 3m .. 16 + 3m, w = D T̃ + max(T_f − T̃, 0) F with T̃ = exp(−n),
+//                     T_f = exp(−n (1 − ā_f)) (key_light_volume.glsl), times re at its own azimuth. With
+//                     SHELL_LIGHTING 1 w is taken at the vertices (shell.vert) and interpolated, as the sums are;
+//                     otherwise at the fragment. (Without the own cluster's shadow, eq. 12's factor still takes all
+//                     the light.)
 //
 // shell_shade() returns the fragment's premultiplied RGBA; shell.frag blends it, shell_abuffer.frag
 // appends it to the per-pixel fragment lists (exact compositing, docs/renderer.md decision 4).
@@ -81,13 +83,9 @@
 #define SHELL_KEY_LIGHTS 0
 #endif
 #if SHELL_KEY_LIGHTS > 0
-uniform sampler3D u_key_volume[SHELL_KEY_LIGHTS];  // the fibres met toward each key light (KeyLightPass)
-uniform mat4 u_key_frame[SHELL_KEY_LIGHTS];        // shells' space → the volume's texture coordinates
+#include "shaders/gl/key_light_volume.glsl"
 uniform vec4 u_key_light[SHELL_KEY_LIGHTS];        // unit direction toward the light, λ
 uniform int u_key_index[SHELL_KEY_LIGHTS];         // in the lights buffer
-
-// The fibres met from p toward key light m.
-float key_fibres(int m, vec3 p) { return textureLod(u_key_volume[m], (u_key_frame[m] * vec4(p, 1.0)).xyz, 0.0).r; }
 #endif
 #if SHELL_OWN != 0
 #include "shaders/lighting/luts_gl.glsl"  // lut_own_cluster (bound by LightingPass::bind_tables)
@@ -120,6 +118,9 @@ centroid in vec4 v_L13;
 #endif
 #if SHELL_OWN == 2
 centroid in vec3 v_L9;
+#endif
+#if SHELL_KEY_LIGHTS > 0
+centroid in vec3 v_key_weight[SHELL_KEY_LIGHTS];
 #endif
 #endif
 
@@ -521,12 +522,15 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
 #if SHELL_KEY_LIGHTS > 0
     for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
-        vec3 direct = lighting_fetch(texcoord.y, info.y, 14 + 3 * m).rgb;
-        vec3 forward = lighting_fetch(texcoord.y, info.y, 15 + 3 * m).rgb;
-        vec3 loss = lighting_fetch(texcoord.y, info.y, 16 + 3 * m).rgb;
-        float n = key_fibres(m, position);
-        float T_direct = exp(-n);
-        vec3 w = direct * T_direct + max(exp(-n * loss) - vec3(T_direct), vec3(0.0)) * forward;
+#if SHELL_LIGHTING == 1
+        // Per vertex, as the sums are, and interpolated as light: a coarser mesh's vertices are the full mesh's and read
+        // only the samples the lighting pass lit (docs/renderer.md, "Key lights").
+        vec3 w = v_key_weight[m];
+#else
+        vec3 w = key_light_weight(m, position, lighting_fetch(texcoord.y, info.y, 14 + 3 * m).rgb,
+                                  lighting_fetch(texcoord.y, info.y, 15 + 3 * m).rgb,
+                                  lighting_fetch(texcoord.y, info.y, 16 + 3 * m).rgb);
+#endif
         vec3 l = u_key_light[m].xyz;
         float d1, d2, d3, d4;
         light_dampings(l, u_key_light[m].w, T, d1, d2, d3, d4);

@@ -230,7 +230,7 @@ TEST(HairAsset, RefusesTruncatedCorruptAndOtherVersionFiles) {
     EXPECT_NE(refusal(flipped).find("checksum"), std::string::npos) << refusal(flipped);
     std::vector<std::byte> other = good;
     other[8] = std::byte{1};
-    EXPECT_NE(refusal(other).find("version 1 (this coif reads version 3"), std::string::npos) << refusal(other);
+    EXPECT_NE(refusal(other).find("version 1 (this coif reads version 4"), std::string::npos) << refusal(other);
     std::vector<std::byte> magic = good;
     magic[3] = std::byte{'X'};
     EXPECT_NE(refusal(magic).find("bad magic"), std::string::npos);
@@ -261,11 +261,18 @@ TEST(HairAsset, RefusesHostileCountsAndIndicesWithTheChecksumRight) {
         h.shells.instances[1].info.x += 1;
         EXPECT_NE(refusal(hair_asset_bytes(h)).find("INST 1"), std::string::npos);
     }
-    // Skinned, so that the grid's strands are written (a still hair's asset leaves them out).
+    // Skinned: the grid's strands (written for every hair, the key lights' fine grid is made from them) moved with
+    // the bone weights.
     CookedShells skinned = c;
     skinned.skinning = StyleSkinning{{"head"}, std::vector<BoneInfluence>(c.shells.clusters())};
     EXPECT_EQ(refusal(hair_asset_bytes(skinned)), "accepted");
-    EXPECT_GT(hair_asset_bytes(skinned).size(), hair_asset_bytes(c).size() + 12 * c.shadow_source.points.size());
+    {  // a still hair's asset carries them too
+        const CookedShells still = parse_hair_asset(hair_asset_bytes(c), "hair.coif");
+        ASSERT_FALSE(c.shadow_source.points.empty());
+        EXPECT_EQ(still.shadow_source.points, c.shadow_source.points);
+        EXPECT_EQ(still.shadow_source.offsets, c.shadow_source.offsets);
+        EXPECT_EQ(still.shadow_strand_cluster, c.shadow_strand_cluster);
+    }
     {  // a shadow strand of a cluster that is not there
         CookedShells h = skinned;
         h.shadow_strand_cluster[0] = static_cast<std::uint32_t>(h.shells.clusters());

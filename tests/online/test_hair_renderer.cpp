@@ -221,9 +221,9 @@ TEST(HairRenderer, KeyLightsLightEveryInstanceInItsOwnSpace) {
     const glm::vec3 centre = 0.5f * (hr.bounds_min() + hr.bounds_max());
     const glm::mat4 beside = glm::translate(glm::mat4(1.0f), 1.2f * glm::length(size) * right + centre) *
                              glm::rotate(glm::mat4(1.0f), 1.0f, glm::vec3(0, 1, 0)) * glm::translate(glm::mat4(1.0f), -centre);
-    gl::ShellSettings keyed;
+    gl::ShellSettings keyed, plain;
     keyed.key_lights = 1;
-    const gl::ShellSettings plain;
+    plain.key_lights = 0;
     const auto draw = [&](std::vector<glm::mat4> instances, const gl::ShellSettings& st) {
         scene.host.clear(1.0f, 1.0f);
         FrameInputs f = inputs(cam, scene.host, scene.lights);

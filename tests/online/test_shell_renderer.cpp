@@ -164,6 +164,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     gl::ShellSettings settings;
     settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them,
     settings.lod_lighting = false;  // whatever the clusters' levels of detail
+    settings.key_lights = 0;        // the light in the lighting pass's sums, shadowed from the axis
     settings.fiber_radius = 0.05f;  // fibres of radius r: τ = 2r × the strands' projected length per area
     // Rays start outside the own cluster (its share is each fragment's: shaders/lighting/own_cluster.glsl), so
     // c0 sees the light unshadowed.
@@ -379,6 +380,7 @@ TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
     gl::ShellSettings settings;
+    settings.key_lights = 0;  // the one light in the lighting pass's sums, which this reads
     renderer.draw(camera, settings);
     const std::vector<float> plain = renderer.read_lighting();
     // A map holding the settings' σa everywhere gives the same lighting, bit for bit (same values,

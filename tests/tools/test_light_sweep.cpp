@@ -83,7 +83,7 @@ TEST(LightSweepSlow, AKeyLightDrawsTheReferencesShapesUnderOneNarrowLightFrom26D
         std::ofstream p(dir / "key.json");
         p << R"({"lod_pixels": 0, "key_lights": 1})";  // full meshes, as above
         std::ofstream q(dir / "axes.json");
-        q << R"({"lod_pixels": 0})";
+        q << R"({"lod_pixels": 0, "key_lights": 0})";
     }
     const std::string refs = " --references '" + (dir / "refs").string() + "'";
     const auto key = sweep("--set lights --params '" + (dir / "key.json").string() + "'" + refs, 0.6, 2.5);
