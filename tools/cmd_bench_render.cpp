@@ -46,7 +46,9 @@ void add_bench_render(CLI::App& root) {
     o->scene.add_to(cmd);
     cmd->add_option("--db", o->db, "HRIR database; default: the cached default database (built on first use)");
     cmd->add_option("--env", o->env, "SRBF lights JSON or an environment map; default: the embedded 40 lights");
-    cmd->add_option("--params", o->params, "Scattering parameters JSON (see coif render)");
+    cmd->add_option("--params", o->params,
+                    "Parameters JSON (see coif render): its keys apply over each preset's choices, e.g. {\"key_lights\": 0} "
+                    "measures every preset, full included, without key lights");
     cmd->add_option("--quality", o->qualities,
                     "Quality presets measured (default: all; see coif render --help); each beside full, the reference: its "
                     "error against full's image, its frame against the floor of full's shells")
@@ -103,6 +105,7 @@ void add_bench_render(CLI::App& root) {
             const auto preset = [&](coif::gl::Quality q, bool reuse) {
                 coif::gl::ShellSettings s = settings;
                 coif::gl::apply_quality(s, q);
+                if (!o->params.empty()) s = coif::gl::read_shell_settings(o->params, s);  // its keys over the preset's
                 s.reuse_lighting = reuse;
                 return s;
             };

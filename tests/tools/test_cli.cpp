@@ -531,6 +531,28 @@ TEST(Cli, QualityPresetsStayWithinTheirBoundsOfFull) {
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+// `coif bench render --params`: the file's keys apply over each preset's choices (here the level of detail off), so that
+// a preset can be measured with one of its choices changed; without it the preset's own choice stands.
+TEST(Cli, BenchRenderParamsApplyOverEachPreset) {
+    const auto dir = test::scratch_dir("cli-bench-params");
+    {
+        std::ofstream p(dir / "full_meshes.json");
+        p << R"({"lod_pixels": 0})";
+    }
+    const auto bench = [&](const std::string& params) {
+        const auto r = run_coif("bench render --no-models --frames 1 --width 48 --height 32 --quality high --json" + params);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return r.exit_code == 0 ? nlohmann::json::parse(r.out)["scenes"][0] : nlohmann::json{};
+    };
+    const auto own = bench(""), changed = bench(" --params '" + (dir / "full_meshes.json").string() + "'");
+    ASSERT_EQ(own["quality"], "high");
+    EXPECT_EQ(own["lod_pixels"].get<double>(), 24.0);
+    EXPECT_EQ(changed["lod_pixels"].get<double>(), 0.0);
+    EXPECT_EQ(changed["clusters_at_level"][0], changed["clusters"]) << "every cluster's full meshes";
+    EXPECT_LT(own["clusters_at_level"][0].get<int>(), own["clusters"].get<int>()) << "48 x 32 px coarsens the preset's";
+    fs::remove_all(dir);
+}
+
 // The default preset holds the rule it was chosen by (blurred PSNR ≥ 35 dB, detail ratio in [0.9, 1.1], radiance ratio
 // in [0.97, 1.03] of full) beyond the default lights and view: under the city map fitted to 40 lights, seen from behind,
 // where the lights it culls per sample are another sky's (docs/renderer.md "Lights culled per lighting sample": at
