@@ -92,7 +92,9 @@ struct ShellRenderer::Impl {
     DensityGrid grid;                       // the hair's own shadow grid (set_body extends a copy of it)
     std::vector<ShellInstance> cooked_instances;  // the placements as cooked, kept by the first set_cluster_transforms
     std::vector<LightingSample> cooked_samples;
-    Strands shadow_source, moved_strands;  // the grid's strands as cooked, and as set_cluster_transforms moved them
+    ShadowStrands shadow_source;  // the grid's strands as cooked
+    Strands rest_strands;         // a copy of them, made when first needed (make_key_grid)
+    Strands moved_strands;        // as set_cluster_transforms moved them
     std::vector<std::uint32_t> shadow_strand_cluster;
 
     void invalidate_shadows() {
@@ -142,7 +144,9 @@ struct ShellRenderer::Impl {
     // "Key lights": its cost).
     bool make_key_grid() {
         if (key_grid_made) return false;
-        const Strands& strands = !moved_strands.points.empty() ? moved_strands : shadow_source;
+        if (moved_strands.points.empty() && rest_strands.points.empty() && !shadow_source.points.empty())
+            rest_strands = shadow_source.strands();
+        const Strands& strands = !moved_strands.points.empty() ? moved_strands : rest_strands;
         gpu->set_key_grid(strands.points.empty() ? grid : voxelize_strands(strands, glm::mat3(1.0f), kKeyLightGridSize));
         key_grid_made = true;
         return true;
@@ -182,7 +186,8 @@ void ShellRenderer::set_hair(CookedShells cooked) {
     m.lighting_steps.clear();
     m.cooked_instances.clear();
     m.cooked_samples.clear();
-    m.shadow_source = Strands{};
+    m.shadow_source = ShadowStrands{};
+    m.rest_strands = Strands{};
     m.moved_strands = Strands{};
     m.shadow_strand_cluster.clear();
     m.key_grid_made = false;
@@ -324,8 +329,8 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
     if (m.shadow_source.points.empty()) return;
     // The grid's strands moved with their clusters and voxelized again, with the body (set_body) in it.
     const auto regrid = Clock::now();
-    const Strands& from = m.shadow_source;
-    if (m.moved_strands.points.empty()) m.moved_strands = from;  // the first motion: a copy to move (a still hair needs none)
+    const ShadowStrands& from = m.shadow_source;
+    if (m.moved_strands.points.empty()) m.moved_strands = from.strands();  // the first motion: a copy to move
     for (std::size_t i = 0; i < m.shadow_strand_cluster.size(); ++i) {
         const glm::mat4& T = transforms[m.shadow_strand_cluster[i]];
         for (std::uint32_t k = from.offsets[i]; k < from.offsets[i + 1]; ++k)

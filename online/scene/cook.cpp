@@ -538,8 +538,9 @@ CookedShells cook_shells(const HairStyle& style, const SatfIndex& satf, const gl
     // What moving the clusters needs: their roots, the grid's strands turned as the grid holds them, the bone weights.
     c.body_orientation = orientation * style_source_rotation(style);
     c.roots = cluster_roots(style, orientation);
-    c.shadow_source.points.reserve(strands.points.size());
-    for (const glm::vec3& q : strands.points) c.shadow_source.points.push_back(orientation * q);
+    std::vector<glm::vec3>& points = c.shadow_source.points.vector();
+    points.reserve(strands.points.size());
+    for (const glm::vec3& q : strands.points) points.push_back(orientation * q);
     c.shadow_source.offsets = strands.offsets;
     c.shadow_strand_cluster = std::move(strand_cluster);
     c.skinning = style.skinning;

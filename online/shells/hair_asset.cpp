@@ -404,8 +404,8 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     g.diagonal_xy = r.bulk<glm::vec4>("GDIA");
     g.off_diagonal = r.bulk<glm::vec2>("GOFF");
     c.roots = r.section<glm::vec3>("ROOT");
-    c.shadow_source.points = r.section<glm::vec3>("SPNT");
-    c.shadow_source.offsets = r.section<std::uint32_t>("SOFF");
+    c.shadow_source.points = r.bulk<glm::vec3>("SPNT");
+    c.shadow_source.offsets = r.bulk<std::uint32_t>("SOFF");
     c.shadow_strand_cluster = r.section<std::uint32_t>("SCLU");
     std::vector<BoneInfluence> influences = r.section<BoneInfluence>("SKIN");
     if (r.at != data.size()) r.fail(r.at, "unexpected bytes after the last section");
@@ -485,13 +485,14 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
     if (c.roots.size() != C) r.fail("ROOT", "one root per cluster expected");
     for (const glm::vec3& v : c.roots)
         if (!finite(v)) r.fail("ROOT", "not finite");
-    const Strands& st = c.shadow_source;
+    const ShadowStrands& st = c.shadow_source;
     if (st.offsets.empty()) {
         if (!st.points.empty() || !c.shadow_strand_cluster.empty()) r.fail("SOFF", "shadow strand points without offsets");
     } else {
         if (st.offsets.size() != c.shadow_strand_cluster.size() + 1 || st.offsets.size() - 1 != c.shadow_strands)
             r.fail("SOFF", "expected one offset per shadow strand and one more (META/shadow_strands)");
-        if (st.offsets.front() != 0 || st.offsets.back() != st.points.size()) r.fail("SOFF", "must run from 0 to the point count");
+        if (st.offsets[0] != 0 || st.offsets[st.offsets.size() - 1] != st.points.size())
+            r.fail("SOFF", "must run from 0 to the point count");
         for (std::size_t i = 1; i < st.offsets.size(); ++i)
             if (st.offsets[i] < st.offsets[i - 1]) r.fail("SOFF " + std::to_string(i), "offsets must not decrease");
     }
@@ -513,6 +514,13 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
 }
 
 }  // namespace
+
+Strands ShadowStrands::strands() const {
+    Strands s;
+    s.points.assign(points.begin(), points.end());
+    s.offsets.assign(offsets.begin(), offsets.end());
+    return s;
+}
 
 CookedShells parse_hair_asset(std::span<const std::byte> data, const std::filesystem::path& file) {
     return parse(data, file, nullptr);

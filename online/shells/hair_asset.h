@@ -70,6 +70,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/bulk.h"
 #include "models/skinning.h"
 #include "models/strands.h"
 #include "online/shells/prepared_shells.h"
@@ -80,6 +81,16 @@
 namespace coif {
 
 inline constexpr std::uint32_t kHairAssetVersion = 4;
+
+// The strands voxelized into a cooked hair's shadow grid, in the shells' space (points and offsets only): an asset's
+// viewed in its mapping, so that loading does not copy them (they are read on the first draw with key lights, and on
+// the first motion).
+struct ShadowStrands {
+    Bulk<glm::vec3> points;
+    Bulk<std::uint32_t> offsets;  // strand i is points[offsets[i], offsets[i + 1])
+    std::size_t strand_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+    Strands strands() const;      // a copy, as Strands (points and offsets)
+};
 
 struct CookedShells {
     std::string name;             // the style's
@@ -97,9 +108,9 @@ struct CookedShells {
     // What moving the clusters needs (ShellRenderer::set_cluster_transforms; HairRenderer's bone poses):
     glm::mat3 body_orientation{1.0f};  // turns a body in the style's strand file's frame into the shells' space
     std::vector<glm::vec3> roots;      // per cluster: its axis's root, in the shells' space (cluster_roots)
-    // The strands voxelized into `grid`, in the shells' space (points and offsets only), and each one's cluster: moved
-    // with their clusters and voxelized again, they give a moved hair's grid.
-    Strands shadow_source;
+    // The strands voxelized into `grid` and each one's cluster: voxelized finer, they give the key lights' grid; moved
+    // with their clusters and voxelized again, a moved hair's grid.
+    ShadowStrands shadow_source;
     std::vector<std::uint32_t> shadow_strand_cluster;
     std::optional<StyleSkinning> skinning;  // the style's bone weights (models/skinning.h), when it has them
 };

@@ -3,6 +3,7 @@
 // truncated, corrupt, hostile and other-version files are refused with an error naming the file and the place.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -269,8 +270,8 @@ TEST(HairAsset, RefusesHostileCountsAndIndicesWithTheChecksumRight) {
     {  // a still hair's asset carries them too
         const CookedShells still = parse_hair_asset(hair_asset_bytes(c), "hair.coif");
         ASSERT_FALSE(c.shadow_source.points.empty());
-        EXPECT_EQ(still.shadow_source.points, c.shadow_source.points);
-        EXPECT_EQ(still.shadow_source.offsets, c.shadow_source.offsets);
+        EXPECT_TRUE(std::ranges::equal(still.shadow_source.points, c.shadow_source.points));
+        EXPECT_TRUE(std::ranges::equal(still.shadow_source.offsets, c.shadow_source.offsets));
         EXPECT_EQ(still.shadow_strand_cluster, c.shadow_strand_cluster);
     }
     {  // a shadow strand of a cluster that is not there
@@ -280,7 +281,7 @@ TEST(HairAsset, RefusesHostileCountsAndIndicesWithTheChecksumRight) {
     }
     {  // shadow strands whose offsets run past their points
         CookedShells h = skinned;
-        h.shadow_source.offsets.back() += 1;
+        h.shadow_source.offsets.vector().back() += 1;
         EXPECT_NE(refusal(hair_asset_bytes(h)).find("SOFF"), std::string::npos);
     }
     {  // a NaN root
@@ -317,7 +318,8 @@ TEST(HairAsset, FileIsWrittenAtomicallyAndReadBack) {
     // The large arrays are viewed in the mapping, not copied (how the asset loads fast: docs/renderer.md), and the
     // mapping outlives the file's name: a re-bake replaces the file atomically while a renderer still reads it.
     EXPECT_TRUE(r.shells.vertices.viewed() && r.shells.indices.viewed() && r.atlas.texels.viewed() &&
-                r.grid.diagonal_xy.viewed() && r.grid.off_diagonal.viewed());
+                r.grid.diagonal_xy.viewed() && r.grid.off_diagonal.viewed() && r.shadow_source.points.viewed() &&
+                r.shadow_source.offsets.viewed());
     EXPECT_FALSE(parse_hair_asset(hair_asset_bytes(cooked()), "hair.coif").shells.vertices.viewed())
         << "bytes without an owner are copied";
     write_hair_asset(dir / "hair.coif", cooked());
@@ -353,8 +355,9 @@ TEST(HairAsset, FileIsWrittenAtomicallyAndReadBack) {
         t.grid.diagonal_xy.vector().assign(8, glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
         t.grid.off_diagonal.vector().assign(8, glm::vec2(0.0f));
         // Two shadow strands of two points, and the cluster skinned to one bone.
-        t.shadow_source.points = {glm::vec3(0.0f), glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(0.5f), glm::vec3(0.5f, -1.0f, 0.5f)};
-        t.shadow_source.offsets = {0, 2, 4};
+        t.shadow_source.points =
+            std::vector<glm::vec3>{glm::vec3(0.0f), glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(0.5f), glm::vec3(0.5f, -1.0f, 0.5f)};
+        t.shadow_source.offsets = std::vector<std::uint32_t>{0, 2, 4};
         t.shadow_strand_cluster = {0, 0};
         t.shadow_strands = 2;
         BoneInfluence on_head;
