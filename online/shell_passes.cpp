@@ -520,7 +520,7 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
     const int width = t.viewport.z, height = t.viewport.w;
     const DepthTest depth = floor_only || t.scene_depth == 0 ? DepthTest::none : t.depth_test;
     const Program* program = &floor_;
-    const int keys = floor_only ? 0 : key_lights(gpu, s);  // lit per fragment with their shadow volumes
+    const int keys = floor_only ? 0 : key_lights(gpu, s);  // lit apart, with their shadow volumes
     if (depth_pass) {
         const std::vector<std::string> defines{"KBUFFER_SLOTS " + std::to_string(s.kbuffer_slots),
                                                "SHELL_SCENE_DEPTH " + std::to_string(static_cast<int>(depth))};

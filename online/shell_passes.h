@@ -55,8 +55,9 @@ inline constexpr int kSceneDepthUnit = 3 + shading::kLutCount;
 Texture make_lighting_texture(int rows, std::size_t clusters);
 
 // The key lights of ShellSettings::key_lights and their shadow volumes (KeyLightPass): the brightest lights
-// (key_light_indices), each lit per fragment with the fibres met toward it from the fragment itself, read from a volume
-// aligned with the light, instead of through the lighting pass's sums with the shadow of the cluster's axis.
+// (key_light_indices), each lit apart with the fibres met toward it from each vertex of the shells (each fragment on the
+// per-fragment path), read from a volume aligned with the light, instead of through the lighting pass's sums with the
+// shadow of the cluster's axis.
 struct KeyLightVolumes {
     int count = 0;
     std::array<int, kMaxKeyLights> index{};           // in the lights buffer
@@ -274,7 +275,7 @@ private:
     void pick_levels(const ShellGpu& gpu, const PreparedShells& shells, const FrameView& view, std::span<const ClusterBox> boxes,
                      int height, float budget_px, std::vector<int>& levels) const;
     // `fold`: the program that draws two layers from the outer one's mesh (ShellSettings::fold_level).
-    // `keys`: the key lights lit per fragment (key_lights).
+    // `keys`: the key lights lit apart, with their shadow volumes (key_lights).
     const Program& shading_program(Compositing mode, const ShellSettings& s, int lighting_rows, const DiskLayout& layout,
                                    DepthTest depth, int keys, bool fold = false);
     Program floor_{{"shaders/gl/shell.vert", "shaders/gl/shell_floor.frag"}};

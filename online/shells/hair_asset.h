@@ -88,7 +88,6 @@ inline constexpr std::uint32_t kHairAssetVersion = 4;
 struct ShadowStrands {
     Bulk<glm::vec3> points;
     Bulk<std::uint32_t> offsets;  // strand i is points[offsets[i], offsets[i + 1])
-    std::size_t strand_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
     Strands strands() const;      // a copy, as Strands (points and offsets)
 };
 

@@ -154,16 +154,16 @@ inline constexpr QualityPreset kQualityPresets[] = {
     {Quality::medium, "medium",
      "k-buffer compositing (the nearest 4 fragments of each pixel exact; bounded memory), one record per sector, re's "
      "first harmonic, a quarter of the lighting samples where the clusters are smooth, coarser meshes, layers drawn in "
-     "pairs, the dimmest lights carrying 10 % of each sample's light skipped, the brightest light lit per fragment with "
-     "its own shadow",
+     "pairs, the dimmest lights carrying 10 % of each sample's light skipped, the brightest light lit apart with its "
+     "own shadow from each vertex",
      Compositing::kbuffer, 1, 1, 4, false, 32.0f, 0.1f, 4, 0, 1},
     {Quality::high, "high",
      "exact compositing, one record per sector, half the lighting samples where the clusters are smooth, meshes "
      "coarsened where they are small on screen, the dimmest lights carrying 5 % of each sample's light skipped, the "
-     "brightest light lit per fragment with its own shadow (the default)",
+     "brightest light lit apart with its own shadow from each vertex (the default)",
      Compositing::exact, 1, 2, 2, false, 24.0f, 0.05f, 8, 3, 1},
     {Quality::full, "full", "exact compositing, one record per sector, every lighting sample, full meshes, every light, the "
-                            "brightest light lit per fragment with its own shadow: the reference of the others",
+                            "brightest light lit apart with its own shadow from each vertex: the reference of the others",
      Compositing::exact, 1, 2, 1, false, 0.0f, 0.0f, 8, 3, 1},
 };
 inline constexpr Quality kDefaultQuality = Quality::high;
