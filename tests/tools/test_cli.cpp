@@ -557,7 +557,8 @@ TEST(Cli, BenchRenderParamsApplyOverEachPreset) {
 // in [0.97, 1.03] of full) beyond the default lights and view: under the city map fitted to 40 lights, seen from behind,
 // where the lights it culls per sample are another sky's (docs/renderer.md "Lights culled per lighting sample": at
 // 360 × 240 39.8 dB, detail 1.017, radiance 0.989–1.000; culling 20 % instead of 5 % fell to 34.0 dB and 0.952. Here,
-// at 240 × 160: 38.9 dB, detail 1.070, radiance 0.983–0.996).
+// at 240 × 160: 38.9 dB, detail 1.070, radiance 0.983–0.996; with one key light, the default since, 37.5 dB, detail
+// 1.006, radiance 0.979–0.997, and without it now 36.9 dB, 1.027, 0.973–0.992: docs/renderer.md "Key lights").
 TEST(Cli, TheDefaultPresetHoldsItsRuleOfFullUnderTheCityMapFromBehind) {
     COIF_SHARED_DATA(map, "blender_studiolight_city.exr");
     const auto dir = test::scratch_dir("cli-quality-city");
