@@ -93,8 +93,13 @@ struct ShellRenderer::Impl {
     std::vector<ShellInstance> cooked_instances;  // the placements as cooked, kept by the first set_cluster_transforms
     std::vector<LightingSample> cooked_samples;
     ShadowStrands shadow_source;  // the grid's strands as cooked
-    Strands rest_strands;         // a copy of them, made when first needed (make_key_grid)
-    Strands moved_strands;        // as set_cluster_transforms moved them
+    // A copy of them, made when first needed (make_key_grid, set_cluster_transforms), as set_cluster_transforms last
+    // moved them.
+    Strands strands;
+    Strands& strands_now() {
+        if (strands.points.empty() && !shadow_source.points.empty()) strands = shadow_source.strands();
+        return strands;
+    }
     std::vector<std::uint32_t> shadow_strand_cluster;
 
     void invalidate_shadows() {
@@ -144,10 +149,8 @@ struct ShellRenderer::Impl {
     // "Key lights": its cost).
     bool make_key_grid() {
         if (key_grid_made) return false;
-        if (moved_strands.points.empty() && rest_strands.points.empty() && !shadow_source.points.empty())
-            rest_strands = shadow_source.strands();
-        const Strands& strands = !moved_strands.points.empty() ? moved_strands : rest_strands;
-        gpu->set_key_grid(strands.points.empty() ? grid : voxelize_strands(strands, glm::mat3(1.0f), kKeyLightGridSize));
+        const Strands& now = strands_now();
+        gpu->set_key_grid(now.points.empty() ? grid : voxelize_strands(now, glm::mat3(1.0f), kKeyLightGridSize));
         key_grid_made = true;
         return true;
     }
@@ -187,8 +190,7 @@ void ShellRenderer::set_hair(CookedShells cooked) {
     m.cooked_instances.clear();
     m.cooked_samples.clear();
     m.shadow_source = ShadowStrands{};
-    m.rest_strands = Strands{};
-    m.moved_strands = Strands{};
+    m.strands = Strands{};
     m.shadow_strand_cluster.clear();
     m.key_grid_made = false;
     m.shells_pass.forget_shells();  // its cached boxes were of the last hair's meshes
@@ -330,13 +332,13 @@ void ShellRenderer::set_cluster_transforms(std::span<const glm::mat4> transforms
     // The grid's strands moved with their clusters and voxelized again, with the body (set_body) in it.
     const auto regrid = Clock::now();
     const ShadowStrands& from = m.shadow_source;
-    if (m.moved_strands.points.empty()) m.moved_strands = from.strands();  // the first motion: a copy to move
+    Strands& moved = m.strands_now();  // every strand's points are overwritten below
     for (std::size_t i = 0; i < m.shadow_strand_cluster.size(); ++i) {
         const glm::mat4& T = transforms[m.shadow_strand_cluster[i]];
         for (std::uint32_t k = from.offsets[i]; k < from.offsets[i + 1]; ++k)
-            m.moved_strands.points[k] = glm::vec3(T * glm::vec4(from.points[k], 1.0f));
+            moved.points[k] = glm::vec3(T * glm::vec4(from.points[k], 1.0f));
     }
-    m.grid = voxelize_strands(m.moved_strands, glm::mat3(1.0f), kShadowGridSize);
+    m.grid = voxelize_strands(moved, glm::mat3(1.0f), kShadowGridSize);
     m.key_grid_made = false;
     upload_grid();
     move_timings_.shadow_grid_ms = wall_ms_since(regrid);

@@ -69,7 +69,9 @@ void add_bench_render(CLI::App& root) {
     cmd->callback([o] {
         coif::gl::ShellSettings settings;
         settings.samples = o->samples;
-        if (!o->params.empty()) settings = coif::gl::read_shell_settings(o->params, settings);
+        // Read once; its keys apply over each preset's choices below.
+        const nlohmann::json params = o->params.empty() ? nlohmann::json::object() : coif::read_json_file(o->params);
+        settings = coif::gl::shell_settings_from_json(params, o->params, settings);
         settings.timed = true;  // wall-clock per pass, each waited for (llvmpipe's timer queries misattribute)
         coif::cli::SceneInputs inputs = coif::cli::read_scene_inputs(o->scene, o->env);
         std::vector<BenchScene> models;
@@ -105,7 +107,7 @@ void add_bench_render(CLI::App& root) {
             const auto preset = [&](coif::gl::Quality q, bool reuse) {
                 coif::gl::ShellSettings s = settings;
                 coif::gl::apply_quality(s, q);
-                if (!o->params.empty()) s = coif::gl::read_shell_settings(o->params, s);  // its keys over the preset's
+                s = coif::gl::shell_settings_from_json(params, o->params, s);  // its keys over the preset's
                 s.reuse_lighting = reuse;
                 return s;
             };
