@@ -21,4 +21,13 @@ vec3 sample_ellipse_axis(LightingSample s, vec3 T) {
     return cos(s.normal.w) * n + sin(s.normal.w) * cross(T, n);
 }
 
+// The cluster's axis at t ∈ [0, 1] of lighting cluster `cluster`, `rows` samples to a cluster: linear between the
+// two samples around t.
+vec3 sample_axis_point(float t, uint cluster, int rows) {
+    float tr = clamp(t, 0.0, 1.0) * float(rows - 1);
+    int row = min(int(tr), rows - 2);
+    int first = int(cluster) * rows + row;
+    return mix(samples[first].position.xyz, samples[first + 1].position.xyz, tr - float(row));
+}
+
 #endif

@@ -46,7 +46,10 @@ out vec3 v_L9;   // texel 9: the fibres' forward loss 1 − ā_f
 #endif
 #if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
 #include "shaders/gl/key_light_volume.glsl"
-out vec3 v_key_weight[SHELL_KEY_LIGHTS];  // each key light's weight at the vertex (key_light_weight)
+#include "shaders/gl/lighting_samples.glsl"  // the clusters' axes (key_slab)
+uniform float u_layer_rho;  // this layer's slab, in cluster radii: the mesh's surface and the next layer in's
+uniform float u_inner_rho;
+out vec3 v_key_weight[SHELL_KEY_LIGHTS];  // each key light's weight over the vertex's slab (key_light_weight)
 #endif
 #endif
 
@@ -92,10 +95,14 @@ void main() {
     v_L9 = lighting_fetch(a_texcoord.y, inst.info.y, 9).xyz;
 #endif
 #if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
-    for (int m = 0; m < SHELL_KEY_LIGHTS; ++m)
-        v_key_weight[m] = key_light_weight(m, world.xyz, lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb,
-                                           lighting_fetch(a_texcoord.y, inst.info.y, 15 + 3 * m).rgb,
-                                           lighting_fetch(a_texcoord.y, inst.info.y, 16 + 3 * m).rgb);
+    {
+        KeySlab slab = key_slab(world.xyz, sample_axis_point(a_texcoord.y, inst.info.y, u_lighting_rows), u_layer_rho,
+                                u_inner_rho);
+        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m)
+            v_key_weight[m] = key_light_weight(m, slab, lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb,
+                                               lighting_fetch(a_texcoord.y, inst.info.y, 15 + 3 * m).rgb,
+                                               lighting_fetch(a_texcoord.y, inst.info.y, 16 + 3 * m).rgb);
+    }
 #endif
 #endif
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1

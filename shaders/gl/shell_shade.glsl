@@ -143,12 +143,12 @@ uniform int u_s_u;
 uniform int u_layers;
 uniform int u_layer;
 uniform float u_kappa_shadow;
-uniform float u_layer_rho;         // this layer mesh's surface v_{j+1}, in cluster radii (SHELL_OWN)
+uniform float u_layer_rho;         // this layer mesh's surface v_{j+1}, in cluster radii (SHELL_OWN, key_slab)
+uniform float u_inner_rho;         // the surface v_j of the layer inside it (key_slab; the folded inner layer's)
 #if SHELL_FOLD == 1
 centroid in vec3 v_axis_offset;    // from the cluster's axis (shell.vert)
 centroid in vec3 v_ellipse_e1;     // the cross-section's axis of A
 centroid in vec2 v_ellipse_ab;     // its half-axes A, B
-uniform float u_inner_rho;         // the folded inner layer's surface v_j
 uniform float u_fold_inner;        // 1: the layer inside u_layer is folded into this draw; 0: none (an odd count's last)
 #endif
 uniform float u_re_scale;          // 1 / re_norm
@@ -361,26 +361,40 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
     float total = 0.0;
+#if SHELL_KEY_LIGHTS > 0
+    KeySlab slab = key_slab(position, mix(samples[first].position.xyz, samples[first + 1].position.xyz, f), u_layer_rho,
+                            u_inner_rho);
+#endif
+#if SHELL_TILT_PICK == 1
+#define SHELL_LIGHT_WEIGHT(sh, lum_visible, lum_total) shell_light_weight(strip_point, j, sh, lum_visible, lum_total)
+#else
+    // The mean over the fibres' tangents about T, as in the lighting pass.
+#define SHELL_LIGHT_WEIGHT(sh, lum_visible, lum_total) \
+    shell_light_weight_fibres(hp, V, T, r, tm, ta, tb, j, sh, lum_visible, lum_total)
+#endif
     for (int j = 0; j < u_light_count; ++j) {
         vec2 sh = vec2(1.0, 0.0);
         if (u_shadows != 0)
             sh = mix(shadows[first * u_light_count + j], shadows[(first + 1) * u_light_count + j], f);
         float own_on = 1.0;  // 0 for a key light: its volume counts the own cluster's fibres
+        vec3 wj;
 #if SHELL_KEY_LIGHTS > 0
-        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
-            if (u_key_index[m] == j) {
-                float n = key_fibres(m, position);
-                sh = vec2(exp(-n), n);
-                own_on = 0.0;
-            }
+        int key = -1;
+        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m)
+            if (u_key_index[m] == j) key = m;
+        if (key >= 0) {  // over the layer's slab (key_slab), as key_light_weight
+            float n0 = key_fibres(key, slab.p0), n1 = key_fibres(key, slab.p1);
+            float visible0 = 0.0, total0 = 0.0, visible1 = 0.0, total1 = 0.0;
+            wj = mix(SHELL_LIGHT_WEIGHT(vec2(exp(-n0), n0), visible0, total0),
+                     SHELL_LIGHT_WEIGHT(vec2(exp(-n1), n1), visible1, total1), slab.w1);
+            visible += mix(visible0, visible1, slab.w1);
+            total += mix(total0, total1, slab.w1);
+            own_on = 0.0;
+        } else
+#endif
+        {
+            wj = SHELL_LIGHT_WEIGHT(sh, visible, total);
         }
-#endif
-#if SHELL_TILT_PICK == 1
-        vec3 wj = shell_light_weight(strip_point, j, sh, visible, total);
-#else
-        // The mean over the fibres' tangents about T, as in the lighting pass.
-        vec3 wj = shell_light_weight_fibres(hp, V, T, r, tm, ta, tb, j, sh, visible, total);
-#endif
         float th = sector_azimuth(lights[j].direction_lambda.xyz, T, r);
         float d1, d2, d3, d4;
         light_dampings(lights[j].direction_lambda.xyz, lights[j].direction_lambda.w, T, d1, d2, d3, d4);
@@ -421,6 +435,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         lit += wj * re;
         C0 += wj;
     }
+#undef SHELL_LIGHT_WEIGHT
 #if SHELL_DEBUG == 3
     return vec4(C0 * alpha * tau, alpha);
 #elif SHELL_DEBUG == 4
@@ -521,13 +536,16 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #endif
     vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
 #if SHELL_KEY_LIGHTS > 0
+#if SHELL_LIGHTING != 1
+    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, u_inner_rho);
+#endif
     for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
 #if SHELL_LIGHTING == 1
         // Per vertex, as the sums are, and interpolated as light: a coarser mesh's vertices are the full mesh's and read
         // only the samples the lighting pass lit (docs/renderer.md, "Key lights").
         vec3 w = v_key_weight[m];
 #else
-        vec3 w = key_light_weight(m, position, lighting_fetch(texcoord.y, info.y, 14 + 3 * m).rgb,
+        vec3 w = key_light_weight(m, slab, lighting_fetch(texcoord.y, info.y, 14 + 3 * m).rgb,
                                   lighting_fetch(texcoord.y, info.y, 15 + 3 * m).rgb,
                                   lighting_fetch(texcoord.y, info.y, 16 + 3 * m).rgb);
 #endif

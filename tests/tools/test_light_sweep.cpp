@@ -74,8 +74,10 @@ TEST(LightSweepSlow, LightingAtTheAxesFollowsTheReferenceUnderOneNarrowLightFrom
 // the shadow from the clusters' axes does not draw. Measured: the worst blurred PSNR of the 26 is 22.47 dB with the key
 // light and 14.85 dB without (the light from behind, −z); the means 27.48 and 27.37 dB; 46 and 45 of the 78 channel ratios
 // in the band, all in 0.78–2.17 with the key light. With its light taken per vertex (since): 22.39 dB, mean 27.51 dB, 48
-// of 78 in 0.81–2.22. The test asks for a worst of at least 20 dB with the key light and at
-// least 5 dB above the worst without, and every ratio in [0.6, 2.5]: it fails if the key light's shadow stops drawing the
+// of 78 in 0.81–2.22. Over the layer's slab (since, docs/quality.md "A key light's shadow over the layer's slab"):
+// 24.09 dB, mean 27.86 dB, 54 of 78 in 0.63–1.99 (the lights from above and behind the darkest). The test asks for a
+// worst of at least 20 dB with the key light and at least 5 dB above the worst without, and every ratio in [0.5, 2.5]:
+// it fails if the key light's shadow stops drawing the
 // shapes (a shadow from the axes again, a volume read in the wrong frame) and not on the references' noise, which moves
 // a blurred PSNR by well under 1 dB at 64 samples per pixel.
 TEST(LightSweepSlow, AKeyLightDrawsTheReferencesShapesUnderOneNarrowLightFrom26Directions) {
@@ -87,7 +89,7 @@ TEST(LightSweepSlow, AKeyLightDrawsTheReferencesShapesUnderOneNarrowLightFrom26D
         q << R"({"lod_pixels": 0, "key_lights": 0})";
     }
     const std::string refs = " --references '" + (dir / "refs").string() + "'";
-    const auto key = sweep("--set lights --params '" + (dir / "key.json").string() + "'" + refs, 0.6, 2.5);
+    const auto key = sweep("--set lights --params '" + (dir / "key.json").string() + "'" + refs, 0.5, 2.5);
     const auto axes = sweep("--set lights --params '" + (dir / "axes.json").string() + "'" + refs, 0.5, 2.5);
     ASSERT_EQ(key["sets"]["lights"]["ratios"], 78);
     const double worst = key["sets"]["lights"]["blurred_psnr_db_worst"].get<double>();
@@ -109,7 +111,9 @@ TEST(LightSweepSlow, AKeyLightDrawsTheReferencesShapesUnderOneNarrowLightFrom26D
 // 48 channel ratios of the maps in it, all in 0.87–1.46 (out: the courtyard turned 270°, 1.46 / 1.33 in red and green,
 // its sun from −x, where the single light is 1.51–1.63 too); 71 of the 72 of the ring, in 0.80–1.27 (out: azimuth 270°,
 // elevation −20°, blue 1.27). With one key light, the default since: 47 of 48 in 0.889–1.284 (the courtyard turned 270°,
-// red 1.28) and 71 of 72 in 0.818–1.261. Five ratios lie within 0.05 of the band's edges, so the test asks for 45 of 48 and 68 of 72,
+// red 1.28) and 71 of 72 in 0.818–1.261. With its shadow over the layer's slab (since): 47 of 48 in 0.84–1.26 and 69 of
+// 72 in 0.79–1.25 (out: azimuth 315°, elevation 40°, 0.79 in red and green; 270°, −20°, blue 1.2505; azimuth 0°,
+// elevation 40° is in at 0.805). Ratios lie within 0.05 of the band's edges, so the test asks for 45 of 48 and 68 of 72,
 // and every ratio in [0.7, 1.6]: it fails on a return to the maps' 2–6× of the issue, and not on one ratio at the edge
 // moving by the references' noise (well under 1 % of a mean over ~1 500 hair pixels at 64 samples per pixel). Issue 16
 // stays open until every ratio is in the band.
