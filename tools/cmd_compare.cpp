@@ -82,6 +82,8 @@ void add_compare(CLI::App& root) {
         const coif::Image b = coif::read_image(o->b);
         const coif::CompareResult r = coif::compare_images(a, b, co, o->a, o->b);
         const std::vector<coif::cli::GateResult> gates = coif::cli::check_gates(o->gates, r);
+        if (!r.appearance.radiance_warning.empty())
+            std::fprintf(stderr, "coif compare: warning: %s\n", r.appearance.radiance_warning.c_str());
         if (!o->heatmap.empty()) {
             coif::WriteOptions wo;
             wo.description = "coif compare: per-pixel LDR-FLIP of " + o->b + " against " + o->a + " (magma-like ramp, 0 black, 1 pale yellow)";

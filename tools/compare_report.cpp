@@ -47,6 +47,7 @@ nlohmann::json appearance_json(const AppearanceMetrics& m) {
             {"radiance_a", rgb_json(m.radiance_a)},
             {"radiance_b", rgb_json(m.radiance_b)},
             {"radiance_ratio", rgb_json(m.radiance_ratio)},
+            {"radiance_warning", m.radiance_warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.radiance_warning)},
             {"blur_sigma_px", m.blur_sigma},
             {"blurred_psnr_db", metric_json(m.blurred_psnr_db)},
             {"blurred_ssim", metric_json(m.blurred_ssim)},

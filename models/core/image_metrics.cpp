@@ -490,6 +490,35 @@ void mean_hair_radiance(const Image& im, const HairMask& how, const std::vector<
     for (int k = 0; k < 3; ++k) out[k] = weight > 0 ? sum[k] / weight : 0.0;
 }
 
+// AppearanceMetrics::radiance_warning for image `which` (its name in the message) read as `how` over `both`: over a
+// background, hair darker than it in some pixels and brighter in others cancels in the mean, which is then a small
+// part of the mean |L| (under half of it).
+std::string weak_radiance(const Image& im, const HairMask& how, const std::vector<std::uint8_t>& both, const char* which) {
+    if (how.alpha) return {};
+    double sum[3] = {0, 0, 0}, magnitude[3] = {0, 0, 0};
+    for (size_t i = 0; i < both.size(); ++i) {
+        if (!both[i]) continue;
+        const float* p = im.pixels.data() + i * im.channels;
+        for (int k = 0; k < 3; ++k) {
+            const double l = double(p[k]) - how.background[k];
+            sum[k] += l;
+            magnitude[k] += std::abs(l);
+        }
+    }
+    static const char* const channel[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+        if (magnitude[c] > 0.0 && std::abs(sum[c]) < 0.5 * magnitude[c]) {
+            char text[360];
+            std::snprintf(text, sizeof text,
+                          "the radiance ratio says little: %s's hair is darker than its background in some pixels and "
+                          "brighter in others, so in %s its mean minus the background is %.0f %% of its mean difference "
+                          "from it; draw both images over black (--background 0 0 0) or with alpha",
+                          which, channel[c], 100.0 * std::abs(sum[c]) / magnitude[c]);
+            return text;
+        }
+    return {};
+}
+
 // RMS over `both` and the three channels of p − G_σ * p.
 double detail_rms(const Planes& p, const std::vector<std::uint8_t>& both) {
     return std::sqrt(masked_mse(p, gaussian_blur(p, kDetailSigma), both));
@@ -521,6 +550,8 @@ AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairM
     mean_hair_radiance(b, mb, both, m.radiance_b);
     for (int c = 0; c < 3; ++c)
         m.radiance_ratio[c] = m.radiance_a[c] != 0.0 ? m.radiance_b[c] / m.radiance_a[c] : std::numeric_limits<double>::quiet_NaN();
+    m.radiance_warning = weak_radiance(a, ma, both, "A");
+    if (m.radiance_warning.empty()) m.radiance_warning = weak_radiance(b, mb, both, "B");
     const Planes ba = gaussian_blur(ta, blur_sigma), bb = gaussian_blur(tb, blur_sigma);
     m.blurred_psnr_db = psnr(ba, bb, masks.either, 1.0);
     m.blurred_ssim = masked_mean(ssim_map(ba, bb, 1.0), masks.either);

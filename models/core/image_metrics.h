@@ -152,6 +152,11 @@ struct AppearanceMetrics {
     double blur_sigma = kDefaultBlurSigma;
     double blurred_psnr_db = 0, blurred_ssim = 0;   // tone-mapped, after the blur, over "either"
     double detail_a = 0, detail_b = 0, detail_ratio = 0;
+    // Set where the radiance ratio says little: an image read over a background (no alpha) whose hair is darker than
+    // the background in some pixels and brighter in others, so that in a channel the mean of pixel − background is
+    // under half of the mean |pixel − background| (dark hair over the default blue-grey). Empty otherwise; `coif
+    // compare` prints it as a warning.
+    std::string radiance_warning;
 };
 
 // The appearance metrics alone, from both images, their masks and their tone-mapped planes (compare_images
