@@ -362,8 +362,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     float visible = 0.0;
     float total = 0.0;
 #if SHELL_KEY_LIGHTS > 0
-    KeySlab slab = key_slab(position, mix(samples[first].position.xyz, samples[first + 1].position.xyz, f), u_layer_rho,
-                            u_inner_rho);
+    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, u_inner_rho);
 #endif
 #if SHELL_TILT_PICK == 1
 #define SHELL_LIGHT_WEIGHT(sh, lum_visible, lum_total) shell_light_weight(strip_point, j, sh, lum_visible, lum_total)
