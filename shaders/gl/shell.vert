@@ -50,6 +50,9 @@ out vec3 v_L9;   // texel 9: the fibres' forward loss 1 − ā_f
 uniform float u_layer_rho;  // this layer's slab, in cluster radii: the mesh's surface and the next layer in's
 uniform float u_inner_rho;
 out vec3 v_key_weight[SHELL_KEY_LIGHTS];  // each key light's weight over the vertex's slab (key_light_weight)
+#if defined(SHELL_FOLD) && SHELL_FOLD == 1
+out vec3 v_key_weight_inner[SHELL_KEY_LIGHTS];  // the folded inner layer's, over its own slab on the same line
+#endif
 #endif
 #endif
 
@@ -96,12 +99,21 @@ void main() {
 #endif
 #if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
     {
-        KeySlab slab = key_slab(world.xyz, sample_axis_point(a_texcoord.y, inst.info.y, u_lighting_rows), u_layer_rho,
-                                u_inner_rho);
-        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m)
-            v_key_weight[m] = key_light_weight(m, slab, lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb,
-                                               lighting_fetch(a_texcoord.y, inst.info.y, 15 + 3 * m).rgb,
-                                               lighting_fetch(a_texcoord.y, inst.info.y, 16 + 3 * m).rgb);
+        vec3 axis = sample_axis_point(a_texcoord.y, inst.info.y, u_lighting_rows);
+        KeySlab slab = key_slab(world.xyz, axis, u_layer_rho, u_layer_rho, u_inner_rho);
+#if defined(SHELL_FOLD) && SHELL_FOLD == 1
+        // The layers are evenly spaced (DiskLayout::layer_v): the inner one's slab ends as far inside its surface.
+        KeySlab inner = key_slab(world.xyz, axis, u_layer_rho, u_inner_rho, max(2.0 * u_inner_rho - u_layer_rho, 0.0));
+#endif
+        for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
+            vec3 direct = lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb;
+            vec3 forward = lighting_fetch(a_texcoord.y, inst.info.y, 15 + 3 * m).rgb;
+            vec3 loss = lighting_fetch(a_texcoord.y, inst.info.y, 16 + 3 * m).rgb;
+            v_key_weight[m] = key_light_weight(m, slab, direct, forward, loss);
+#if defined(SHELL_FOLD) && SHELL_FOLD == 1
+            v_key_weight_inner[m] = key_light_weight(m, inner, direct, forward, loss);
+#endif
+        }
     }
 #endif
 #endif

@@ -121,6 +121,9 @@ centroid in vec3 v_L9;
 #endif
 #if SHELL_KEY_LIGHTS > 0
 centroid in vec3 v_key_weight[SHELL_KEY_LIGHTS];
+#if SHELL_FOLD == 1
+centroid in vec3 v_key_weight_inner[SHELL_KEY_LIGHTS];  // the folded inner layer's (shell.vert)
+#endif
 #endif
 #endif
 
@@ -362,7 +365,9 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     float visible = 0.0;
     float total = 0.0;
 #if SHELL_KEY_LIGHTS > 0
-    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, u_inner_rho);
+    // This layer's slab (`rho` and the layers' spacing), on the line through the fragment, which lies on u_layer_rho.
+    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, rho,
+                            max(rho - (u_layer_rho - u_inner_rho), 0.0));
 #endif
 #if SHELL_TILT_PICK == 1
 #define SHELL_LIGHT_WEIGHT(sh, lum_visible, lum_total) shell_light_weight(strip_point, j, sh, lum_visible, lum_total)
@@ -536,13 +541,18 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
 #if SHELL_KEY_LIGHTS > 0
 #if SHELL_LIGHTING != 1
-    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, u_inner_rho);
+    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, rho,
+                            max(rho - (u_layer_rho - u_inner_rho), 0.0));
 #endif
     for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
 #if SHELL_LIGHTING == 1
         // Per vertex, as the sums are, and interpolated as light: a coarser mesh's vertices are the full mesh's and read
         // only the samples the lighting pass lit (docs/renderer.md, "Key lights").
+#if SHELL_FOLD == 1
+        vec3 w = layer == u_layer ? v_key_weight[m] : v_key_weight_inner[m];
+#else
         vec3 w = v_key_weight[m];
+#endif
 #else
         vec3 w = key_light_weight(m, slab, lighting_fetch(texcoord.y, info.y, 14 + 3 * m).rgb,
                                   lighting_fetch(texcoord.y, info.y, 15 + 3 * m).rgb,

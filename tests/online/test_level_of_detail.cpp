@@ -185,6 +185,36 @@ TEST(LevelOfDetail, FoldedLayersDrawHalfTheTrianglesAndKeepTheLook) {
                 mean_abs_difference(pairs, whole) / m);
     EXPECT_NEAR(mean(pairs) / m, 1.0, 0.02);
     EXPECT_LT(mean_abs_difference(pairs, whole), 0.05 * m);
+    // With fibres thick enough that a key light from the camera keeps a quarter of its light (each layer's slab lies
+    // under the layers outside it), each layer of a pair takes its own slab (shell.vert v_key_weight_inner): the folded
+    // image keeps the unfolded one's light within [0.85, 1.1]. Measured 0.91: the inner layer's slab is taken on the
+    // outer vertex's line from the axis, where the view ray meets that layer elsewhere. With the outer layer's slab for
+    // both (before), 1.17.
+    {
+        SrbfLight key;  // narrow, from the camera: it reaches each layer through the layers outside it
+        key.L = glm::vec3(1.0f);
+        key.omega = glm::normalize(camera.eye - 0.5f * (r.bounds_min() + r.bounds_max()));
+        key.lambda = 0.05f;
+        const SrbfLight lights[] = {key};
+        r.set_lights(lights);
+        gl::ShellSettings thick = s, thick_folded = folded;
+        thick.background = thick_folded.background = glm::vec3(0.0f);
+        const auto rgb = [](const Image& a) {
+            double sum = 0;
+            for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += i % 4 == 3 ? 0.0 : a.pixels[i];
+            return sum;
+        };
+        thick.fiber_radius = thick_folded.fiber_radius = 1e-7f;
+        const double thin = rgb(r.render(camera, thick));
+        thick.fiber_radius = thick_folded.fiber_radius = 0.2f;
+        const Image w = r.render(camera, thick), p = r.render(camera, thick_folded);
+        std::printf("with thick fibres: folded against every layer %.4f (every layer keeps %.4f of the thin fibres' light)\n",
+                    rgb(p) / rgb(w), rgb(w) / thin);
+        EXPECT_LT(rgb(w), 0.5 * thin) << "the thick fibres shadow the layers";
+        EXPECT_GT(rgb(p) / rgb(w), 0.85);
+        EXPECT_LT(rgb(p) / rgb(w), 1.1);
+        r.set_lights(test::two_lights());
+    }
     // Without fold_level the same renderer draws every layer again.
     EXPECT_EQ(r.render(camera, s).pixels, whole.pixels);
     EXPECT_EQ(r.timings().triangles_drawn, whole_triangles);
