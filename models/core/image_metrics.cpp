@@ -492,7 +492,8 @@ void mean_hair_radiance(const Image& im, const HairMask& how, const std::vector<
 
 // AppearanceMetrics::radiance_warning for image `which` (its name in the message) read as `how` over `both`: over a
 // background, hair darker than it in some pixels and brighter in others cancels in the mean, which is then a small
-// part of the mean |L| (under half of it).
+// part of the mean |L| (under a quarter of it: a relative error in the pixels is then more than 4 times larger in the
+// mean).
 std::string weak_radiance(const Image& im, const HairMask& how, const std::vector<std::uint8_t>& both, const char* which) {
     if (how.alpha) return {};
     double sum[3] = {0, 0, 0}, magnitude[3] = {0, 0, 0};
@@ -507,7 +508,7 @@ std::string weak_radiance(const Image& im, const HairMask& how, const std::vecto
     }
     static const char* const channel[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-        if (magnitude[c] > 0.0 && std::abs(sum[c]) < 0.5 * magnitude[c]) {
+        if (magnitude[c] > 0.0 && std::abs(sum[c]) < 0.25 * magnitude[c]) {
             char text[360];
             std::snprintf(text, sizeof text,
                           "the radiance ratio says little: %s's hair is darker than its background in some pixels and "

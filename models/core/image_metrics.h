@@ -154,7 +154,7 @@ struct AppearanceMetrics {
     double detail_a = 0, detail_b = 0, detail_ratio = 0;
     // Set where the radiance ratio says little: an image read over a background (no alpha) whose hair is darker than
     // the background in some pixels and brighter in others, so that in a channel the mean of pixel − background is
-    // under half of the mean |pixel − background| (dark hair over the default blue-grey). Empty otherwise; `coif
+    // under a quarter of the mean |pixel − background| (dark hair over the default blue-grey). Empty otherwise; `coif
     // compare` prints it as a warning.
     std::string radiance_warning;
 };
