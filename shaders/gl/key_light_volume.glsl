@@ -19,18 +19,19 @@ vec3 key_light_weight_at(int m, vec3 p, vec3 direct, vec3 forward, vec3 loss) {
     return direct * T_direct + max(exp(-n * loss) - vec3(T_direct), vec3(0.0)) * forward;
 }
 
-// A layer's fibres fill its slab, from its surface (ρ = rho, in cluster radii) in to the next layer's (rho_inner), and a
-// shell point stands for all of them. So a key light's shadow is taken at two points of the slab on the line from the
-// cluster's axis through the point p (which lies at ρ = rho_p: the mesh's surface, which a folded inner layer's is not):
-// the Gauss-Legendre nodes in ρ, each weighed by its ρ, since a slab's fibres per unit of ρ grow with ρ. At the surface
-// alone, the fibres under it were lit as if nothing of their own layer lay toward the light (docs/quality.md, "A key
-// light's shadow over the layer's slab").
+// A layer's fibres fill its slab, from its surface (ρ = rho, in cluster radii) in to the next layer's, `spacing` further
+// in (the layers are evenly spaced, DiskLayout::layer_v), and a shell point stands for all of them. So a key light's
+// shadow is taken at two points of the slab on the line from the cluster's axis through the point p (which lies at
+// ρ = rho_p: the mesh's surface, which a folded inner layer's is not): the Gauss-Legendre nodes in ρ, each weighed by
+// its ρ, since a slab's fibres per unit of ρ grow with ρ. At the surface alone, the fibres under it were lit as if
+// nothing of their own layer lay toward the light (docs/quality.md, "A key light's shadow over the layer's slab").
 struct KeySlab {
     vec3 p0, p1;   // the two points
     float w1;      // the outer point's weight; the inner one's is 1 - w1
 };
-KeySlab key_slab(vec3 p, vec3 axis, float rho_p, float rho, float rho_inner) {
+KeySlab key_slab(vec3 p, vec3 axis, float rho_p, float spacing, float rho) {
     const float g = 0.28867513;  // 1 / (2 sqrt 3): the nodes lie at the slab's middle -/+ g of its depth
+    float rho_inner = max(rho - spacing, 0.0);
     float r0 = mix(rho_inner, rho, 0.5 - g), r1 = mix(rho_inner, rho, 0.5 + g);
     KeySlab s;
     s.p0 = axis + (r0 / rho_p) * (p - axis);

@@ -100,10 +100,10 @@ void main() {
 #if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
     {
         vec3 axis = sample_axis_point(a_texcoord.y, inst.info.y, u_lighting_rows);
-        KeySlab slab = key_slab(world.xyz, axis, u_layer_rho, u_layer_rho, u_inner_rho);
+        float spacing = u_layer_rho - u_inner_rho;
+        KeySlab slab = key_slab(world.xyz, axis, u_layer_rho, spacing, u_layer_rho);
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
-        // The layers are evenly spaced (DiskLayout::layer_v): the inner one's slab ends as far inside its surface.
-        KeySlab inner = key_slab(world.xyz, axis, u_layer_rho, u_inner_rho, max(2.0 * u_inner_rho - u_layer_rho, 0.0));
+        KeySlab inner = key_slab(world.xyz, axis, u_layer_rho, spacing, u_inner_rho);
 #endif
         for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
             vec3 direct = lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb;

@@ -336,6 +336,12 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     return vec4(vec3(max(t0.y, 0.0) * u_re_scale * tau), alpha);
 #endif
 
+#if SHELL_KEY_LIGHTS > 0 && SHELL_LIGHTING != 1
+    // The key lights' points of this layer's slab (key_slab), on the line through the fragment, which lies on u_layer_rho.
+    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho,
+                            u_layer_rho - u_inner_rho, rho);
+#endif
+
 #if SHELL_LIGHTING == 2
     // Every light at this fragment: its weight in the fragment's own frame (T, r, T × r), shadowed by
     // (T̃, n) interpolated between the two lighting samples around t, times re at the light's own
@@ -364,11 +370,6 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
     float total = 0.0;
-#if SHELL_KEY_LIGHTS > 0
-    // This layer's slab (`rho` and the layers' spacing), on the line through the fragment, which lies on u_layer_rho.
-    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, rho,
-                            max(rho - (u_layer_rho - u_inner_rho), 0.0));
-#endif
 #if SHELL_TILT_PICK == 1
 #define SHELL_LIGHT_WEIGHT(sh, lum_visible, lum_total) shell_light_weight(strip_point, j, sh, lum_visible, lum_total)
 #else
@@ -540,10 +541,6 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #endif
     vec3 sum = fourier_sum(h, C0, C1, S1, C2, S2, C3, S3, C4, S4, e1, e2, e3, e4);
 #if SHELL_KEY_LIGHTS > 0
-#if SHELL_LIGHTING != 1
-    KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho, rho,
-                            max(rho - (u_layer_rho - u_inner_rho), 0.0));
-#endif
     for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
 #if SHELL_LIGHTING == 1
         // Per vertex, as the sums are, and interpolated as light: a coarser mesh's vertices are the full mesh's and read
