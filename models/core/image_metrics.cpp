@@ -477,44 +477,43 @@ std::vector<float> flip_hdr_map(const Planes& ref, const Planes& test, const Hdr
 
 namespace {
 
-// R = Σ c·L / Σ c over `both` (image_metrics.h): the coverage-weighted mean hair radiance.
-void mean_hair_radiance(const Image& im, const HairMask& how, const std::vector<std::uint8_t>& both, double out[3]) {
-    double sum[3] = {0, 0, 0}, weight = 0;
+// R = Σ c·L / Σ c over `both` (image_metrics.h): the coverage-weighted mean hair radiance; and Σ c·|L| / Σ c, its
+// mean magnitude.
+void mean_hair_radiance(const Image& im, const HairMask& how, const std::vector<std::uint8_t>& both, double out[3],
+                        double magnitude[3]) {
+    double sum[3] = {0, 0, 0}, abs_sum[3] = {0, 0, 0}, weight = 0;
     for (size_t i = 0; i < both.size(); ++i) {
         if (!both[i]) continue;
         const float* p = im.pixels.data() + i * im.channels;
         const double c = how.alpha ? double(p[3]) : 1.0;
-        for (int k = 0; k < 3; ++k) sum[k] += c * (how.alpha ? double(p[k]) : double(p[k]) - how.background[k]);
+        for (int k = 0; k < 3; ++k) {
+            const double l = how.alpha ? double(p[k]) : double(p[k]) - how.background[k];
+            sum[k] += c * l;
+            abs_sum[k] += c * std::abs(l);
+        }
         weight += c;
     }
-    for (int k = 0; k < 3; ++k) out[k] = weight > 0 ? sum[k] / weight : 0.0;
+    for (int k = 0; k < 3; ++k) {
+        out[k] = weight > 0 ? sum[k] / weight : 0.0;
+        magnitude[k] = weight > 0 ? abs_sum[k] / weight : 0.0;
+    }
 }
 
-// AppearanceMetrics::radiance_warning for image `which` (its name in the message) read as `how` over `both`: over a
-// background, hair darker than it in some pixels and brighter in others cancels in the mean, which is then a small
-// part of the mean |L| (under a quarter of it: a relative error in the pixels is then more than 4 times larger in the
-// mean).
-std::string weak_radiance(const Image& im, const HairMask& how, const std::vector<std::uint8_t>& both, const char* which) {
+// AppearanceMetrics::radiance_warning for image `which` (its name in the message) read as `how`, its mean hair
+// radiance r and mean magnitude |r|: over a background, hair darker than it in some pixels and brighter in others
+// cancels in the mean, which is then a small part of the mean magnitude (under a quarter of it: a relative error in
+// the pixels is then more than 4 times larger in the mean).
+std::string weak_radiance(const HairMask& how, const double r[3], const double magnitude[3], const char* which) {
     if (how.alpha) return {};
-    double sum[3] = {0, 0, 0}, magnitude[3] = {0, 0, 0};
-    for (size_t i = 0; i < both.size(); ++i) {
-        if (!both[i]) continue;
-        const float* p = im.pixels.data() + i * im.channels;
-        for (int k = 0; k < 3; ++k) {
-            const double l = double(p[k]) - how.background[k];
-            sum[k] += l;
-            magnitude[k] += std::abs(l);
-        }
-    }
     static const char* const channel[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-        if (magnitude[c] > 0.0 && std::abs(sum[c]) < 0.25 * magnitude[c]) {
+        if (magnitude[c] > 0.0 && std::abs(r[c]) < 0.25 * magnitude[c]) {
             char text[360];
             std::snprintf(text, sizeof text,
                           "the radiance ratio says little: %s's hair is darker than its background in some pixels and "
                           "brighter in others, so in %s its mean minus the background is %.0f %% of its mean difference "
                           "from it; draw both images over black (--background 0 0 0) or with alpha",
-                          which, channel[c], 100.0 * std::abs(sum[c]) / magnitude[c]);
+                          which, channel[c], 100.0 * std::abs(r[c]) / magnitude[c]);
             return text;
         }
     return {};
@@ -547,12 +546,13 @@ AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairM
         throw Error(names, "hair masks", "no pixel is hair in both images (A: " + std::to_string(ma.count) + " pixels, B: " +
                                              std::to_string(mb.count) + "), so their hair radiance cannot be compared");
     m.mask_iou = own_masks ? double(m.pixels_both) / double(m.pixels_either) : std::numeric_limits<double>::quiet_NaN();
-    mean_hair_radiance(a, ma, both, m.radiance_a);
-    mean_hair_radiance(b, mb, both, m.radiance_b);
+    double magnitude_a[3], magnitude_b[3];
+    mean_hair_radiance(a, ma, both, m.radiance_a, magnitude_a);
+    mean_hair_radiance(b, mb, both, m.radiance_b, magnitude_b);
     for (int c = 0; c < 3; ++c)
         m.radiance_ratio[c] = m.radiance_a[c] != 0.0 ? m.radiance_b[c] / m.radiance_a[c] : std::numeric_limits<double>::quiet_NaN();
-    m.radiance_warning = weak_radiance(a, ma, both, "A");
-    if (m.radiance_warning.empty()) m.radiance_warning = weak_radiance(b, mb, both, "B");
+    m.radiance_warning = weak_radiance(ma, m.radiance_a, magnitude_a, "A");
+    if (m.radiance_warning.empty()) m.radiance_warning = weak_radiance(mb, m.radiance_b, magnitude_b, "B");
     const Planes ba = gaussian_blur(ta, blur_sigma), bb = gaussian_blur(tb, blur_sigma);
     m.blurred_psnr_db = psnr(ba, bb, masks.either, 1.0);
     m.blurred_ssim = masked_mean(ssim_map(ba, bb, 1.0), masks.either);
