@@ -9,6 +9,11 @@ glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
 
 glm::mat4 Camera::projection() const { return glm::perspective(fov_y, aspect(), near_plane, far_plane); }
 
+glm::vec2 Camera::pixel(glm::vec3 p) const {
+    const glm::vec4 c = projection() * view() * glm::vec4(p, 1.0f);
+    return {(c.x / c.w + 1.0f) * 0.5f * float(width), (1.0f - c.y / c.w) * 0.5f * float(height)};
+}
+
 void Camera::ray(float px, float py, glm::vec3& origin, glm::vec3& direction) const {
     const glm::vec3 forward = glm::normalize(target - eye);
     const glm::vec3 right = glm::normalize(glm::cross(forward, up));

@@ -27,6 +27,8 @@ struct Camera {
     glm::mat4 projection() const;
     // World-space ray through a point of the image in pixel units (x right, y down, (0,0) top-left corner).
     void ray(float px, float py, glm::vec3& origin, glm::vec3& direction) const;
+    // The point of the image, in ray's pixel units, where world point p (in front of the eye) projects.
+    glm::vec2 pixel(glm::vec3 p) const;
 
     // A camera orbiting a bounding box: azimuth about +y measured from +z towards +x, elevation
     // above the horizontal plane (both radians); the distance frames the whole box with a margin.

@@ -412,9 +412,8 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     const double surface = transmittance(1.0);
     EXPECT_LT(slab, 0.7 * surface) << "the slab lies under fibres of its own";
     // The near face's centre on the image.
-    const glm::vec4 clip = camera.projection() * camera.view() * glm::vec4(axis + toward, 1.0f);
-    const int px = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(camera.width));
-    const int py = static_cast<int>((0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(camera.height));
+    const glm::vec2 centre = camera.pixel(axis + toward);
+    const int px = static_cast<int>(centre.x), py = static_cast<int>(centre.y);
     for (const bool per_fragment : {false, true}) {
         s.lighting_per_fragment = per_fragment;
         s.fiber_radius = radius;

@@ -24,16 +24,11 @@ Strands straight_strand(glm::vec3 a, glm::vec3 b) {
     return s;
 }
 
-glm::vec2 to_pixels(const Camera& camera, glm::vec3 p) {
-    const glm::vec4 c = camera.projection() * camera.view() * glm::vec4(p, 1.0f);
-    return {(c.x / c.w + 1.0f) * 0.5f * float(camera.width), (1.0f - c.y / c.w) * 0.5f * float(camera.height)};
-}
-
 // The point of the line a→b whose attributes GL interpolates for the fragment of pixel (x, y): the pixel
 // centre projected orthogonally onto the line's image (GL 4.5 §14.5.1), lifted back onto the 3D line
 // along the camera ray through that image point.
 glm::vec3 fragment_point(const Camera& camera, glm::vec3 a, glm::vec3 b, int x, int y) {
-    const glm::vec2 A = to_pixels(camera, a), B = to_pixels(camera, b), C(float(x) + 0.5f, float(y) + 0.5f);
+    const glm::vec2 A = camera.pixel(a), B = camera.pixel(b), C(float(x) + 0.5f, float(y) + 0.5f);
     const glm::vec2 Q = A + (B - A) * (glm::dot(C - A, B - A) / glm::dot(B - A, B - A));
     glm::vec3 o, d;
     camera.ray(Q.x, Q.y, o, d);
@@ -122,7 +117,7 @@ TEST(StrandRenderer, CoverageIsTheProjectedFibreDiameter) {
     const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
     // The line is x-major: per column, Σ_y pixel / L_o = the fibre's coverage across one pixel column
     // (× 1/cos of the line's slope, the column's cut through a line of unit width), expected 2r/p.
-    const glm::vec2 A = to_pixels(sc.camera, sc.a), B = to_pixels(sc.camera, sc.b);
+    const glm::vec2 A = sc.camera.pixel(sc.a), B = sc.camera.pixel(sc.b);
     const float slope_factor = glm::length(B - A) / std::abs(B.x - A.x);
     double sum_ratio = 0, sum_expected = 0;
     int columns = 0;
