@@ -23,6 +23,7 @@
 #include "shaders/hair_parameters.h"
 #include "online/shells/shell_settings.h"
 #include "tools/cli.h"
+#include "tools/scene_options.h"
 #include "tools/subprocess.h"
 
 namespace {
@@ -175,8 +176,8 @@ void add_bench_sweep(CLI::App& root) {
         "ratios lie in the issue's band [0.8, 1.25], the mean |ln ratio|, the standard deviation of ln ratio (what one\n"
         "overall factor cannot remove), the blurred PSNR's mean and worst, and the mean FLIP. The references do not\n"
         "depend on the renderer's settings: --references keeps them in a folder and reuses them (named by a hash of\n"
-        "the lights, the fibre's parameters, the view, the size and the samples), so that a second run with other\n"
-        "--params for the shells renders the shells alone. Both renderers run as subprocesses of this coif.\n"
+        "the lights, the fibre's parameters, the view, the size, the samples and the strands drawn), so that a second\n"
+        "run with other --params for the shells renders the shells alone. Both renderers run as subprocesses of this coif.\n"
         "docs/quality.md holds the figures.");
     cmd->add_option("--set", o->sets, "Sets to run: lights, maps, ring (default lights)")->check(CLI::IsMember({"lights", "maps", "ring"}));
     cmd->add_option("--params", o->params, "Parameters file for both renderers, as `coif render --params` reads it (default: the renderer's defaults; {\"lod_pixels\": 0} draws full meshes, as docs/quality.md's sweeps do)");
@@ -250,6 +251,14 @@ void add_bench_sweep(CLI::App& root) {
                                     c.lights.parent_path() / ("fit_" + c.lights.stem().string() + ".log"));
             }
         }
+        // What the references draw: the embedded default style's sampled strands, in the key too, so that references
+        // kept by a coif whose default style or strand sampling differed are not reused.
+        std::string strands_key;
+        {
+            const coif::Strands drawn = coif::cli::SceneOptions{}.load_strands();
+            strands_key.append(reinterpret_cast<const char*>(drawn.points.data()), drawn.points.size() * sizeof(drawn.points[0]));
+            strands_key.append(reinterpret_cast<const char*>(drawn.offsets.data()), drawn.offsets.size() * sizeof(drawn.offsets[0]));
+        }
         const std::string size = " --width " + std::to_string(o->width) + " --height " + std::to_string(o->height) + " --background 0 0 0";
         const std::string params = o->params.empty() ? std::string() : " --params " + shell_quote(o->params);
         std::vector<Row> rows;
@@ -263,8 +272,9 @@ void add_bench_sweep(CLI::App& root) {
             fs::path reference = dir / (stem + "_reference.exr");
             if (!o->references.empty()) {
                 // Named by what makes it: the lights' contents, the parameters the reference reads, the rotation or view,
-                // the size and the samples (not the temporary paths).
-                const std::string key = read_text(c.lights) + params_key + c.how + size + ref_args.substr(ref_args.find(" --spp"));
+                // the size, the samples and the strands drawn (not the temporary paths).
+                const std::string key =
+                    read_text(c.lights) + params_key + c.how + size + ref_args.substr(ref_args.find(" --spp")) + strands_key;
                 char hex[17];
                 std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(key));
                 reference = fs::path(o->references) / ("reference_" + std::string(hex) + ".exr");
