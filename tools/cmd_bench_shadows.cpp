@@ -30,6 +30,8 @@ struct BenchShadowsOptions {
     float radius = 0.0f;
     std::uint64_t seed = 1;
     std::vector<float> light;  // empty: along the camera rays; else the direction toward a light
+    int grid = coif::kShadowGridSize;  // voxels along the hair's longest axis
+    std::string image;                 // with --light: the per-pixel figures (write_image)
     bool json = false;
 };
 
@@ -61,18 +63,31 @@ void add_bench_shadows(CLI::App& root) {
                     "exp(-n) of the grid's count along the light's direction from that fibre beside whether a traced ray\n"
                     "from it toward the light leaves the hair, by bins of n")
         ->expected(3);
+    cmd->add_option("--grid", o->grid,
+                    "Voxels along the hair's longest axis: " + std::to_string(coif::kShadowGridSize) +
+                        " is the shadow pass's grid (the default), " + std::to_string(coif::kKeyLightGridSize) +
+                        " the key lights' (online/shells/shadow_grid.h)")
+        ->check(CLI::Range(8, 512));
+    cmd->add_option("--image", o->image,
+                    "With --light: write the figures per pixel (.exr; written atomically), each the mean over the pixel's rays,\n"
+                    "a ray that meets no fibre counting 0: R the grid's exp(-n) from the fibre it meets, G whether the traced\n"
+                    "ray from there reaches the light, B the share of rays that meet a fibre (the coverage), A 1. So R / B and\n"
+                    "G / B are the pixel's means over the fibres it shows, and sums of R, G and B over a region weigh its fibres");
     coif::cli::add_json_flag(cmd, o->json);
     coif::cli::examples(cmd, "  coif bench shadows --width 360 --height 240\n"
                              "  coif bench shadows --strands ../shared/data/harolongo.data --json\n"
-                             "  coif bench shadows --light -1 0 0 --width 180 --height 120 --spp 16");
+                             "  coif bench shadows --light -1 0 0 --width 180 --height 120 --spp 16\n"
+                             "  coif bench shadows --light 0 1 -1 --grid 128 --image keep.exr   # the key lights' grid, per pixel");
     cmd->callback([o] {
         if (!std::isfinite(o->radius)) throw coif::Error::parameter("option --radius", "must be a finite number of scene units");
+        if (!o->image.empty() && o->light.empty())
+            throw coif::Error::parameter("option --image", "writes the figures toward a light: give --light X Y Z too");
         std::string label;
         const coif::Strands strands = o->scene.load_strands(&label);
         const coif::Camera camera = o->scene.camera_for(strands);
         const float r = o->radius > 0 ? o->radius : coif::auto_fiber_radius(strands);
         // The grid as the renderer builds it from the strands it draws (ShellRenderer: voxelize_strands, not turned).
-        const coif::DensityGrid grid = coif::voxelize_strands(strands, glm::mat3(1.0f), coif::kShadowGridSize);
+        const coif::DensityGrid grid = coif::voxelize_strands(strands, glm::mat3(1.0f), o->grid);
         coif::ReferenceSettings s;
         s.samples_per_pixel = o->spp;
         s.max_depth = 1;
@@ -111,17 +126,31 @@ void add_bench_shadows(CLI::App& root) {
             light = glm::normalize(light);
             // Every fibre point the camera sees counts once (a "pixel" of the table is one such point): the grid's
             // count toward the light from it, and whether the traced ray from it toward the light leaves the hair.
+            coif::Image per_pixel;
+            if (!o->image.empty()) per_pixel = coif::Image(camera.width, camera.height, 4, 1.0f);
             for (int y = 0; y < camera.height; ++y)
                 for (int x = 0; x < camera.width; ++x) {
                     coif::Pcg32 rng(o->seed, static_cast<std::uint64_t>(y) * camera.width + x);
+                    double grid_sum = 0, lit_sum = 0, hits = 0;
                     for (int k = 0; k < o->spp; ++k) {
                         glm::vec3 origin, dir;
                         camera.ray(x + rng.uniform(), y + rng.uniform(), origin, dir);
                         const auto hit = tracer.first_fibre_lit(origin, dir, light);
                         if (!hit.found) continue;
-                        add(2.0 * r * grid.integrate(hit.position, light, reach, 0.5f * grid.voxel), hit.lit ? 1.0 : 0.0);
+                        const double n = 2.0 * r * grid.integrate(hit.position, light, reach, 0.5f * grid.voxel);
+                        add(n, hit.lit ? 1.0 : 0.0);
+                        grid_sum += std::exp(-n);
+                        lit_sum += hit.lit ? 1.0 : 0.0;
+                        hits += 1.0;
+                    }
+                    if (!per_pixel.empty()) {
+                        float* px = per_pixel.at(x, y);
+                        px[0] = static_cast<float>(grid_sum / o->spp);
+                        px[1] = static_cast<float>(lit_sum / o->spp);
+                        px[2] = static_cast<float>(hits / o->spp);
                     }
                 }
+            if (!per_pixel.empty()) coif::write_image(o->image, per_pixel);
         } else {
             for (int y = 0; y < camera.height; ++y)
                 for (int x = 0; x < camera.width; ++x) {

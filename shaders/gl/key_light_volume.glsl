@@ -40,6 +40,9 @@ KeySlab key_slab(vec3 p, vec3 axis, float rho_p, float spacing, float rho) {
     return s;
 }
 
+// Key light m's transmittance over a layer's slab, e^{-n} at its two points (ShellSettings::debug 5).
+float key_transmittance(int m, KeySlab s) { return mix(exp(-key_fibres(m, s.p0)), exp(-key_fibres(m, s.p1)), s.w1); }
+
 // Key light m's weight over a layer's slab (key_slab).
 vec3 key_light_weight(int m, KeySlab s, vec3 direct, vec3 forward, vec3 loss) {
     return mix(key_light_weight_at(m, s.p0, direct, forward, loss), key_light_weight_at(m, s.p1, direct, forward, loss),

@@ -98,6 +98,8 @@ uniform float u_d_f;  // Zinke's d_f for the own cluster's forward-scattered lig
 #if SHELL_LIGHTING == 2
 #include "shaders/gl/shell_light.glsl"
 #include "shaders/gl/lighting_samples.glsl"
+#elif SHELL_DEBUG == 5 && SHELL_KEY_LIGHTS > 0
+#include "shaders/gl/lighting_samples.glsl"  // the clusters' axes, for the slab (key_slab)
 #endif
 #include "shaders/gl/shell_lighting_fetch.glsl"
 #if SHELL_LIGHTING == 1
@@ -336,10 +338,15 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     return vec4(vec3(max(t0.y, 0.0) * u_re_scale * tau), alpha);
 #endif
 
-#if SHELL_KEY_LIGHTS > 0 && SHELL_LIGHTING != 1
+#if SHELL_KEY_LIGHTS > 0 && (SHELL_LIGHTING != 1 || SHELL_DEBUG == 5)
     // The key lights' points of this layer's slab (key_slab), on the line through the fragment, which lies on u_layer_rho.
     KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho,
                             u_layer_rho - u_inner_rho, rho);
+#endif
+#if SHELL_DEBUG == 5 && SHELL_KEY_LIGHTS > 0
+    return vec4(vec3(key_transmittance(0, slab) * alpha), alpha);
+#elif SHELL_DEBUG == 5
+    return vec4(vec3(alpha), alpha);
 #endif
 
 #if SHELL_LIGHTING == 2

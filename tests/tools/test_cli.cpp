@@ -742,6 +742,45 @@ TEST(Cli, BenchShadowsTowardALightCountsFromTheFibresTheCameraSees) {
     EXPECT_EQ(run_coif("bench shadows --light 1 2").exit_code, 2);
 }
 
+TEST(Cli, BenchShadowsWritesItsFiguresPerPixelOnTheGridAsked) {
+    // --image: per pixel, the means over its rays of the grid's exp(-n) (R), the traced ray's reaching the light (G) and
+    // the coverage (B), a ray that meets no fibre counting 0. So over the image ΣR / ΣB and ΣG / ΣB are the table's means
+    // over the fibre points, and ΣB · spp is their count: exactly, up to float sums over ~6 000 pixels (1e-4). --grid
+    // sets the voxels along the hair's longest axis: the key lights' 128 makes a grid of twice the shadow pass's 64.
+    const fs::path dir = test::scratch_dir("bench-shadows-image");
+    const fs::path image = dir / "keep.exr";
+    const int spp = 8;
+    const auto r = run_coif("bench shadows --light 0 1 -1 --grid 128 --width 96 --height 64 --spp " + std::to_string(spp) +
+                            " --json --image '" + image.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const auto coarse = nlohmann::json::parse(run_coif("bench shadows --light 0 1 -1 --width 96 --height 64 --spp 1 --json").out);
+    EXPECT_NEAR(j["grid"][1].get<double>(), 2.0 * coarse["grid"][1].get<double>(), 4.0);  // the hair's long axis is y
+    const coif::Image img = coif::read_image(image);
+    ASSERT_EQ(img.width, 96);
+    ASSERT_EQ(img.height, 64);
+    ASSERT_EQ(img.channels, 4);
+    double sr = 0, sg = 0, sb = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const float* p = img.at(x, y);
+            EXPECT_LE(p[0], p[2] + 1e-6f);  // a fibre's exp(-n) is at most 1 per ray that meets one
+            EXPECT_LE(p[1], p[2] + 1e-6f);
+            sr += p[0];
+            sg += p[1];
+            sb += p[2];
+        }
+    EXPECT_NEAR(sb * spp, j["points"].get<double>(), 1e-3 * j["points"].get<double>());
+    EXPECT_NEAR(sr / sb, j["grid_unoccluded"].get<double>(), 1e-4);
+    EXPECT_NEAR(sg / sb, j["traced_gaps"].get<double>(), 1e-4);
+    const auto no_light = run_coif("bench shadows --image '" + (dir / "x.exr").string() + "'");
+    EXPECT_EQ(no_light.exit_code, 1);
+    EXPECT_THAT(no_light.err, HasSubstr("--light"));
+    EXPECT_FALSE(fs::exists(dir / "x.exr"));
+    EXPECT_EQ(run_coif("bench shadows --grid 4").exit_code, 2);
+    fs::remove_all(dir);
+}
+
 TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
     // coif bench sweep: each case is `coif reference` and `coif render` with the same lights, compared as `coif compare`
     // compares them. One case is run by hand here and must give the bench's figures exactly (the same seed, the same
