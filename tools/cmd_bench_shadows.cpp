@@ -82,6 +82,7 @@ void add_bench_shadows(CLI::App& root) {
         if (!std::isfinite(o->radius)) throw coif::Error::parameter("option --radius", "must be a finite number of scene units");
         if (!o->image.empty() && o->light.empty())
             throw coif::Error::parameter("option --image", "writes the figures toward a light: give --light X Y Z too");
+        if (!o->image.empty()) coif::cli::lock_output(o->image);
         std::string label;
         const coif::Strands strands = o->scene.load_strands(&label);
         const coif::Camera camera = o->scene.camera_for(strands);
@@ -100,7 +101,7 @@ void add_bench_shadows(CLI::App& root) {
         const coif::ReferenceEnvironment sky = coif::ReferenceEnvironment::constant(glm::vec3(1.0f));  // the tracer keeps a reference
         const coif::ReferenceRenderer tracer(strands, sky, bsdf, s);
         const bool toward_light = !o->light.empty();
-        coif::Image coverage;
+        coif::Image coverage, per_pixel;  // per_pixel: --image's figures
         if (!toward_light) coverage = tracer.render(camera);
 
         const glm::vec3 centre = grid.origin + 0.5f * grid.extent();
@@ -126,7 +127,6 @@ void add_bench_shadows(CLI::App& root) {
             light = glm::normalize(light);
             // Every fibre point the camera sees counts once (a "pixel" of the table is one such point): the grid's
             // count toward the light from it, and whether the traced ray from it toward the light leaves the hair.
-            coif::Image per_pixel;
             if (!o->image.empty()) per_pixel = coif::Image(camera.width, camera.height, 4, 1.0f);
             for (int y = 0; y < camera.height; ++y)
                 for (int x = 0; x < camera.width; ++x) {
@@ -150,7 +150,6 @@ void add_bench_shadows(CLI::App& root) {
                         px[2] = static_cast<float>(hits / o->spp);
                     }
                 }
-            if (!per_pixel.empty()) coif::write_image(o->image, per_pixel);
         } else {
             for (int y = 0; y < camera.height; ++y)
                 for (int x = 0; x < camera.width; ++x) {
@@ -163,6 +162,7 @@ void add_bench_shadows(CLI::App& root) {
                 }
         }
         if (all.pixels == 0) throw coif::Error::parameter("camera", "no pixel sees the hair");
+        if (!per_pixel.empty()) coif::write_image(o->image, per_pixel);
         const auto share = [](const Bin& b) {
             const double gaps = b.gaps / b.pixels, fibres = b.fibres / b.pixels;
             return gaps > 0 && fibres > 0 ? -std::log(gaps) / fibres : 0.0;

@@ -777,6 +777,9 @@ TEST(Cli, BenchShadowsWritesItsFiguresPerPixelOnTheGridAsked) {
     EXPECT_EQ(no_light.exit_code, 1);
     EXPECT_THAT(no_light.err, HasSubstr("--light"));
     EXPECT_FALSE(fs::exists(dir / "x.exr"));
+    const auto no_folder = run_coif("bench shadows --light 0 1 0 --image '" + (dir / "none" / "x.exr").string() + "'");
+    EXPECT_EQ(no_folder.exit_code, 1);
+    EXPECT_THAT(no_folder.err, HasSubstr("x.exr"));
     EXPECT_EQ(run_coif("bench shadows --grid 4").exit_code, 2);
     fs::remove_all(dir);
 }
