@@ -254,7 +254,7 @@ void add_bench_sweep(CLI::App& root) {
         // What the references draw: the embedded default style's sampled strands, in the key too, so that references
         // kept by a coif whose default style or strand sampling differed are not reused.
         std::string strands_key;
-        {
+        if (!o->references.empty()) {
             const coif::Strands drawn = coif::cli::SceneOptions{}.load_strands();
             strands_key.append(reinterpret_cast<const char*>(drawn.points.data()), drawn.points.size() * sizeof(drawn.points[0]));
             strands_key.append(reinterpret_cast<const char*>(drawn.offsets.data()), drawn.offsets.size() * sizeof(drawn.offsets[0]));

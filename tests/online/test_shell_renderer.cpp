@@ -414,6 +414,12 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     // The near face's centre on the image.
     const glm::vec2 centre = camera.pixel(axis + toward);
     const int px = static_cast<int>(centre.x), py = static_cast<int>(centre.y);
+    const auto near_face = [&](const Image& image) {  // green over the 3 × 3 pixels there
+        double sum = 0;
+        for (int y = py - 1; y <= py + 1; ++y)
+            for (int x = px - 1; x <= px + 1; ++x) sum += image.at(x, y)[1];
+        return sum;
+    };
     double kept_per_fragment = 0;
     for (const bool per_fragment : {false, true}) {
         s.lighting_per_fragment = per_fragment;
@@ -421,12 +427,7 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
         const Image shadowed = renderer.render(camera, s);
         s.fiber_radius = 1e-7f;
         const Image unshadowed = renderer.render(camera, s);
-        double lit = 0, all = 0;
-        for (int y = py - 1; y <= py + 1; ++y)
-            for (int x = px - 1; x <= px + 1; ++x) {
-                lit += shadowed.at(x, y)[1];
-                all += unshadowed.at(x, y)[1];
-            }
+        const double lit = near_face(shadowed), all = near_face(unshadowed);
         ASSERT_GT(all, 0.0) << "the cluster covers pixel " << px << ", " << py;
         const double kept = lit / all;
         std::printf("%s: the image keeps %.3f of its unshadowed light at the near face's centre; the layer's slab "
@@ -445,12 +446,7 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     const Image alpha = renderer.render(camera, s);
     s.debug = 5;
     const Image kept = renderer.render(camera, s);
-    double t = 0, a = 0;
-    for (int y = py - 1; y <= py + 1; ++y)
-        for (int x = px - 1; x <= px + 1; ++x) {
-            t += kept.at(x, y)[1];
-            a += alpha.at(x, y)[1];
-        }
+    const double t = near_face(kept), a = near_face(alpha);
     ASSERT_GT(a, 0.0);
     std::printf("debug 5: the key light's transmittance %.3f at the near face's centre; the per-fragment path keeps %.3f\n",
                 t / a, kept_per_fragment);
