@@ -253,11 +253,15 @@ void add_bench_sweep(CLI::App& root) {
         }
         // What the references draw: the embedded default style's sampled strands, in the key too, so that references
         // kept by a coif whose default style or strand sampling differed are not reused.
+        // Hashed once here: each case's key then carries 16 hex digits, not the strands' megabytes.
         std::string strands_key;
         if (!o->references.empty()) {
             const coif::Strands drawn = coif::cli::SceneOptions{}.load_strands();
-            strands_key.append(reinterpret_cast<const char*>(drawn.points.data()), drawn.points.size() * sizeof(drawn.points[0]));
-            strands_key.append(reinterpret_cast<const char*>(drawn.offsets.data()), drawn.offsets.size() * sizeof(drawn.offsets[0]));
+            std::string bytes(reinterpret_cast<const char*>(drawn.points.data()), drawn.points.size() * sizeof(drawn.points[0]));
+            bytes.append(reinterpret_cast<const char*>(drawn.offsets.data()), drawn.offsets.size() * sizeof(drawn.offsets[0]));
+            char hex[17];
+            std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(bytes));
+            strands_key = std::string(" strands ") + hex;
         }
         const std::string size = " --width " + std::to_string(o->width) + " --height " + std::to_string(o->height) + " --background 0 0 0";
         const std::string params = o->params.empty() ? std::string() : " --params " + shell_quote(o->params);

@@ -42,11 +42,9 @@ TEST(Body, HidesTheHairBehindItAndNothingElse) {
     const Image with = sc.renderer.render(camera, s);
     ASSERT_EQ(with.width, without.width);
     // The wall's pixels, by projecting its corners (a margin of 2 pixels on each side of its edges is left out).
-    const glm::mat4 vp = camera.projection() * camera.view();
     glm::vec2 lo(1e9f), hi(-1e9f);
     for (const glm::vec3& p : wall.positions) {
-        const glm::vec4 c = vp * glm::vec4(p, 1.0f);
-        const glm::vec2 px((c.x / c.w * 0.5f + 0.5f) * camera.width, (0.5f - c.y / c.w * 0.5f) * camera.height);
+        const glm::vec2 px = camera.pixel(p);
         lo = glm::min(lo, px), hi = glm::max(hi, px);
     }
     int inside = 0, outside = 0, hair_hidden = 0;
