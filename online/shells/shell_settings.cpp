@@ -138,9 +138,10 @@ ParamTable<ShellSettings> make_table() {
                               "004 eq. 12's within-cluster shadow kappa_shadow", [](auto& s) -> auto& { return s.kappa_shadow; }));
     t.push_back(int_param<S>("neighbours", 1, kMaxShellNeighbours, "records blended per sector on the GPU (1: the nearest alone)",
                              [](auto& s) -> auto& { return s.neighbours; }));
-    t.push_back(int_param<S>("debug", 0, 5,
+    t.push_back(int_param<S>("debug", 0, 6,
                              "0 shaded, 1 alpha only, 2 unlit re, 3 lighting C_0 alpha, 4 shadow AOV, 5 key light 0's "
-                             "transmittance over the layer's slab times alpha (alpha where no key light is lit)",
+                             "transmittance over the layer's slab times alpha (alpha where no key light is lit), 6 shaded with "
+                             "the key lights unshadowed (what their shadow takes, beside 0)",
                              [](auto& s) -> auto& { return s.debug; }));
     Param<S> compositing{"compositing", ParamKind::choice, "", 0, 0, false,
                          "exact (per-pixel fragment lists), weighted (weighted blended, bounded memory), kbuffer (the nearest kbuffer_slots "

@@ -74,7 +74,8 @@ struct ShellSettings {
     int samples = 4;                // per pixel: MSAA samples (sorted, unsorted); exact, weighted: render() averages round(√samples)² shifted frames
     Compositing compositing = Compositing::exact;  // decision 4 (docs/renderer.md)
     int debug = 0;                  // 0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0 · α (no re), 4 shadow AOV,
-                                    // 5 key light 0's transmittance over the layer's slab · α (1 · α without one)
+                                    // 5 key light 0's transmittance over the layer's slab · α (1 · α without one),
+                                    // 6 shaded with the key lights' volumes read as empty: their light unshadowed
     // Decision 3's reference: every light evaluated per fragment (its own T, V and radial axis, re at each
     // light's own azimuth; shadows interpolated between lighting samples) instead of the per-sample Fourier
     // sums. ~40× the shading cost: for error figures (docs/renderer.md), not for frames.

@@ -7,8 +7,13 @@
 uniform sampler3D u_key_volume[SHELL_KEY_LIGHTS];  // the fibres met toward each key light (KeyLightPass)
 uniform mat4 u_key_frame[SHELL_KEY_LIGHTS];        // shells' space → the volume's texture coordinates
 
-// The fibres met from p toward key light m.
+// The fibres met from p toward key light m; none with ShellSettings::debug 6, which shades the key lights unshadowed (the
+// rest of the image as in 0), so that their shadow's share of the light can be taken apart from what it shadows.
+#if defined(SHELL_DEBUG) && SHELL_DEBUG == 6
+float key_fibres(int m, vec3 p) { return 0.0; }
+#else
 float key_fibres(int m, vec3 p) { return textureLod(u_key_volume[m], (u_key_frame[m] * vec4(p, 1.0)).xyz, 0.0).r; }
+#endif
 
 // Key light m's weight at p from its texels of the lighting sums (shell_lighting.comp: the unshadowed light `direct`,
 // the forward-scattered light per unit share `forward`, the forward loss `loss`): the light that crosses the n fibres

@@ -25,7 +25,8 @@
 //                     2: the per-fragment, per-light reference of decision 3: every light's weight evaluated
 //                        at this fragment (its own T, V and radial axis; T̃, n interpolated between the
 //                        lighting samples along t) times re at that light's own azimuth
-//   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV
+//   SHELL_DEBUG       0 shaded, 1 α only, 2 unlit re·τ, 3 lighting C_0·α·τ (no re), 4 the shadow AOV, 5 key light 0's
+//                     transmittance over the slab · α, 6 shaded with the key lights unshadowed (key_light_volume.glsl)
 //   SHELL_FOURIER     harmonics of re in θl used, 0..4 (the database stores 4): 0 and 1 read one atlas tile per
 //                     record, 2 and 3 two, 4 all three; the dropped ones are zero (0: re = a0, the same for every
 //                     light azimuth)

@@ -2,6 +2,8 @@
 // evaluator of the lighting module, determinism, a parameter change shows in the next frame, lit hair.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -456,6 +458,25 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     s.key_lights = 0;
     const Image none = renderer.render(camera, s);
     EXPECT_EQ(none.pixels, alpha.pixels);
+    // `debug` 6 shades as 0 with the key light unshadowed: the image of fibres too thin to shadow anything, to the half
+    // float's step (bound 1e-3 of the brightest pixel), and brighter than the shadowed image at the near face.
+    s.key_lights = 1;
+    s.debug = 0;
+    s.fiber_radius = 1e-7f;
+    const Image thin = renderer.render(camera, s);
+    s.fiber_radius = radius;
+    const Image shadowed = renderer.render(camera, s);
+    s.debug = 6;
+    const Image unshadowed_key = renderer.render(camera, s);
+    ASSERT_EQ(unshadowed_key.pixels.size(), thin.pixels.size());
+    float brightest = 0.0f, worst = 0.0f;
+    for (std::size_t i = 0; i < thin.pixels.size(); ++i) {
+        brightest = std::max(brightest, thin.pixels[i]);
+        worst = std::max(worst, std::abs(unshadowed_key.pixels[i] - thin.pixels[i]));
+    }
+    ASSERT_GT(brightest, 0.0f);
+    EXPECT_LE(worst, 1e-3f * brightest);
+    EXPECT_GT(near_face(unshadowed_key), 1.5 * near_face(shadowed)) << "the slab keeps under 0.7 of the light";
 }
 
 TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {

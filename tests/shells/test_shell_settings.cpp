@@ -58,7 +58,7 @@ TEST_F(ShellSettingsFile, BadFilesAreRefusedAtTheirKey) {
     EXPECT_EQ(refusal(R"({"kappa_shadow": -1})").rfind("JSON /kappa_shadow: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"fiber_radius": 101})").rfind("JSON /fiber_radius: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"fiber_radius": -0.1})").rfind("JSON /fiber_radius: ", 0), 0u);
-    EXPECT_EQ(refusal(R"({"debug": 1.5})"), "JSON /debug: must be an integer 0..5");
+    EXPECT_EQ(refusal(R"({"debug": 1.5})"), "JSON /debug: must be an integer 0..6");
     EXPECT_EQ(refusal(R"({"fourier_order": 5})"), "JSON /fourier_order: must be an integer 0..4");
     EXPECT_EQ(refusal(R"({"shadows": "yes"})"), "JSON /shadows: expected true or false");
     EXPECT_EQ(refusal("not json").rfind("byte ", 0), 0u);
