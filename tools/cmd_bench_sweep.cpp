@@ -38,6 +38,13 @@ constexpr double kBandLow = 0.8, kBandHigh = 1.25;
 constexpr float kNarrowLambda = 0.1f, kNarrowRadiance = 300.0f;
 const char* const kSets[] = {"lights", "maps", "ring"};
 
+// 16 hex digits of std::hash over `bytes`: the kept references' names, and the strands' part of their key.
+std::string hash_hex(const std::string& bytes) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(bytes));
+    return hex;
+}
+
 struct SweepOptions {
     std::vector<std::string> sets{"lights"};
     std::string params, db, data = "../shared/data", references, keep;
@@ -259,9 +266,7 @@ void add_bench_sweep(CLI::App& root) {
             const coif::Strands drawn = coif::cli::SceneOptions{}.load_strands();
             std::string bytes(reinterpret_cast<const char*>(drawn.points.data()), drawn.points.size() * sizeof(drawn.points[0]));
             bytes.append(reinterpret_cast<const char*>(drawn.offsets.data()), drawn.offsets.size() * sizeof(drawn.offsets[0]));
-            char hex[17];
-            std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(bytes));
-            strands_key = std::string(" strands ") + hex;
+            strands_key = " strands " + hash_hex(bytes);
         }
         const std::string size = " --width " + std::to_string(o->width) + " --height " + std::to_string(o->height) + " --background 0 0 0";
         const std::string params = o->params.empty() ? std::string() : " --params " + shell_quote(o->params);
@@ -279,9 +284,7 @@ void add_bench_sweep(CLI::App& root) {
                 // the size, the samples and the strands drawn (not the temporary paths).
                 const std::string key =
                     read_text(c.lights) + params_key + c.how + size + ref_args.substr(ref_args.find(" --spp")) + strands_key;
-                char hex[17];
-                std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(key));
-                reference = fs::path(o->references) / ("reference_" + std::string(hex) + ".exr");
+                reference = fs::path(o->references) / ("reference_" + hash_hex(key) + ".exr");
             }
             if (!fs::exists(reference))
                 coif::cli::run_self("reference" + ref_args + " -o " + shell_quote(reference.string()), dir / (stem + "_reference.log"));
