@@ -14,11 +14,13 @@
 #include "online/scene/hair_motion.h"
 #include "online/shell_renderer.h"
 #include "online/shells/shadow_grid.h"
+#include "tests/common/images.h"
 #include "tests/online/shell_test_scene.h"
 
 namespace coif {
 namespace {
 
+using test::max_difference;
 using test::skinned_head;
 
 struct Scene {
@@ -28,12 +30,6 @@ struct Scene {
     Camera camera = Camera::orbit(renderer.bounds_min(), renderer.bounds_max(), 0.4f, 0.2f, 120, 96);
     Scene() { renderer.set_lights(test::two_lights()); }
 };
-
-float max_difference(const Image& a, const Image& b) {
-    float d = 0.0f;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) d = std::max(d, std::abs(a.pixels[i] - b.pixels[i]));
-    return d;
-}
 
 TEST(Motion, TheRestPoseDrawsTheCookedImage) {
     Scene sc;

@@ -22,6 +22,7 @@
 #include "shaders/hair_parameters.h"
 #include "shaders/glsl_prelude.h"
 #include "shaders/lighting.h"
+#include "tests/common/images.h"
 #include "tests/common/run.h"
 #include "online/scene/cook.h"
 #include "tests/online/shell_test_scene.h"
@@ -469,13 +470,9 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     s.debug = 6;
     const Image unshadowed_key = renderer.render(camera, s);
     ASSERT_EQ(unshadowed_key.pixels.size(), thin.pixels.size());
-    float brightest = 0.0f, worst = 0.0f;
-    for (std::size_t i = 0; i < thin.pixels.size(); ++i) {
-        brightest = std::max(brightest, thin.pixels[i]);
-        worst = std::max(worst, std::abs(unshadowed_key.pixels[i] - thin.pixels[i]));
-    }
+    const float brightest = *std::max_element(thin.pixels.begin(), thin.pixels.end());
     ASSERT_GT(brightest, 0.0f);
-    EXPECT_LE(worst, 1e-3f * brightest);
+    EXPECT_LE(test::max_difference(unshadowed_key, thin), 1e-3 * brightest);
     EXPECT_GT(near_face(unshadowed_key), 1.5 * near_face(shadowed)) << "the slab keeps under 0.7 of the light";
 }
 

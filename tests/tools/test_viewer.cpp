@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/core/image.h"
+#include "tests/common/images.h"
 #include "tests/common/run.h"
 
 namespace coif {
@@ -18,6 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using test::max_difference;
 using test::run_coif;
 
 #ifdef COIF_XVFB_RUN
@@ -38,14 +40,6 @@ void write_text(const fs::path& p, const std::string& text) {
 
 // The size of every image here: small, so that the suite stays fast.
 const std::string kSize = " --width 160 --height 120 ";
-
-double max_difference(const Image& a, const Image& b) {
-    EXPECT_EQ(a.pixels.size(), b.pixels.size());
-    double worst = 0;
-    for (std::size_t i = 0; i < std::min(a.pixels.size(), b.pixels.size()); ++i)
-        worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])));
-    return worst;
-}
 
 // Channels more than one 8-bit step apart once tone-mapped as a PNG (what a window or a PNG shows).
 int steps_apart(const Image& a, const Image& b) {
