@@ -18,6 +18,7 @@ struct CompareCliOptions {
     float exposure = 0.0f;
     double ppd = coif::kFlipPixelsPerDegree;
     double blur = coif::kDefaultBlurSigma;
+    int regions = 0;
     coif::cli::CompareGates gates;
     bool json = false;
 };
@@ -44,7 +45,8 @@ void add_compare(CLI::App& root) {
         "  mask IoU         |hair in A and B| / |hair in A or B|: coverage and silhouette\n"
         "  blurred PSNR/SSIM  tone-mapped, after a Gaussian blur of --blur pixels (default 2: cluster scale)\n"
         "  detail ratio     B/A of the RMS of the high-pass (image minus its 1-px Gaussian blur) inside the hair:\n"
-        "                   below 1 the test is smeared, above 1 noisier\n"
+        "                   below 1 the test is smeared, above 1 noisier\n"        "  by region        with --regions N, the radiance ratio of each of N x N regions of the box around the hair:\n"
+        "                   where the test is too bright or too dark, which the one mean hides when errors cancel\n"
         "Thresholds (--min-iou, --min-blurred-psnr, --max-flip, --detail-range, --radiance-range) gate the exit status:\n"
         "a failed one prints which and exits 1, after the report (so CI can stop on an image regression).\n"
         "--heatmap writes the per-pixel LDR-FLIP error as a false-colour picture (magma-like ramp: black = no error,\n"
@@ -57,6 +59,8 @@ void add_compare(CLI::App& root) {
     cmd->add_option("--exposure", o->exposure, "Exposure in stops applied before the tone map of the tone-mapped metrics");
     cmd->add_option("--ppd", o->ppd, "FLIP viewing condition: pixels per degree of visual angle (default: 0.7 m wide 4K screen at 0.7 m)");
     cmd->add_option("--blur", o->blur, "Sigma in pixels of the blur before the blurred PSNR/SSIM (> 0)");
+    cmd->add_option("--regions", o->regions,
+                    "N: also print the radiance ratio region by region, the box around the hair cut into N x N (0..16)");
     cmd->add_option("--min-iou", o->gates.min_iou, "Fail (exit 1) if the hair-mask IoU is below this");
     cmd->add_option("--min-blurred-psnr", o->gates.min_blurred_psnr_db, "Fail (exit 1) if the blurred PSNR (dB) is below this");
     cmd->add_option("--max-flip", o->gates.max_flip, "Fail (exit 1) if the tone-mapped mean FLIP over the hair is above this");
@@ -67,6 +71,7 @@ void add_compare(CLI::App& root) {
     coif::cli::examples(cmd, "  coif compare reference.exr render.exr\n"
                              "  coif compare reference.exr render.png --heatmap flip.png --json\n"
                              "  coif compare a.exr b.exr --mask none --exposure 1\n"
+                             "  coif compare ref.exr render.exr --regions 4\n"
                              "  coif compare ref.exr render.exr --min-iou 0.9 --detail-range 0.8 1.25 --radiance-range 0.8 1.25");
     cmd->callback([o] {
         // Options first, so that a bad one writes nothing.
@@ -76,6 +81,7 @@ void add_compare(CLI::App& root) {
         co.exposure = o->exposure;
         co.pixels_per_degree = o->ppd;
         co.blur_sigma = o->blur;
+        co.regions = o->regions;
         coif::validate(co);
         if (!o->heatmap.empty()) coif::cli::lock_output(o->heatmap);
         const coif::Image a = coif::read_image(o->a);
@@ -133,6 +139,21 @@ void add_compare(CLI::App& root) {
                     coif::format_metric(m.blurred_psnr_db, 2).c_str(), m.blurred_ssim, m.blur_sigma);
         std::printf("  detail ratio               %s   (high-pass RMS: A %.4f, B %.4f)\n", coif::format_metric(m.detail_ratio, 3).c_str(),
                     m.detail_a, m.detail_b);
+        if (m.regions.n > 0) {
+            const coif::RegionRatios& g = m.regions;
+            std::printf("  radiance ratio by region   the mean of R G B's ratios [pixels hair in both], %d x %d regions of the box\n"
+                        "                             (%d, %d)-(%d, %d), rows from the top\n",
+                        g.n, g.n, g.x0, g.y0, g.x1, g.y1);
+            for (int row = 0; row < g.n; ++row) {
+                std::printf("   ");
+                for (int col = 0; col < g.n; ++col) {
+                    const coif::RegionRatio& r = g.cells[static_cast<std::size_t>(row) * g.n + col];
+                    const double mean = (r.radiance_ratio[0] + r.radiance_ratio[1] + r.radiance_ratio[2]) / 3.0;
+                    std::printf(" %5s [%5zu]", coif::format_metric(mean, 2).c_str(), r.pixels);
+                }
+                std::printf("\n");
+            }
+        }
         if (!o->heatmap.empty()) std::printf("heatmap        %s\n", o->heatmap.c_str());
         if (!gates.empty()) {
             std::printf("\nthresholds\n");

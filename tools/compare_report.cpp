@@ -41,8 +41,24 @@ std::string in_range(const std::vector<double>& r) {
 
 }  // namespace
 
+// The radiance ratio by region: null when not asked for; else its box and rows of regions from the top.
+nlohmann::json regions_json(const RegionRatios& g) {
+    if (g.n == 0) return nullptr;
+    nlohmann::json rows = nlohmann::json::array();
+    for (int row = 0; row < g.n; ++row) {
+        nlohmann::json cells = nlohmann::json::array();
+        for (int col = 0; col < g.n; ++col) {
+            const RegionRatio& r = g.cells[static_cast<std::size_t>(row) * g.n + col];
+            cells.push_back({{"pixels", r.pixels}, {"radiance_ratio", rgb_json(r.radiance_ratio)}});
+        }
+        rows.push_back(cells);
+    }
+    return {{"n", g.n}, {"box", {g.x0, g.y0, g.x1, g.y1}}, {"rows", rows}};
+}
+
 nlohmann::json appearance_json(const AppearanceMetrics& m) {
-    return {{"mask_pixels", {{"a", m.pixels_a}, {"b", m.pixels_b}, {"both", m.pixels_both}, {"either", m.pixels_either}}},
+    return {{"regions", regions_json(m.regions)},
+            {"mask_pixels", {{"a", m.pixels_a}, {"b", m.pixels_b}, {"both", m.pixels_both}, {"either", m.pixels_either}}},
             {"mask_iou", metric_json(m.mask_iou)},
             {"radiance_a", rgb_json(m.radiance_a)},
             {"radiance_b", rgb_json(m.radiance_b)},

@@ -519,6 +519,46 @@ std::string weak_radiance(const HairMask& how, const double r[3], const double m
     return {};
 }
 
+// The radiance ratio by region (AppearanceMetrics::regions): the box around `either` cut into n × n, each region's
+// ratio as the whole image's, over its pixels of `both`.
+RegionRatios region_ratios(const Image& a, const HairMask& ma, const Image& b, const HairMask& mb, const HairMask& either,
+                           const std::vector<std::uint8_t>& both, int n) {
+    RegionRatios out;
+    out.n = n;
+    const int w = either.width, h = either.height;
+    out.x0 = w;
+    out.y0 = h;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (either.inside[static_cast<std::size_t>(y) * w + x]) {
+                out.x0 = std::min(out.x0, x);
+                out.x1 = std::max(out.x1, x + 1);
+                out.y0 = std::min(out.y0, y);
+                out.y1 = std::max(out.y1, y + 1);
+            }
+    out.cells.resize(static_cast<std::size_t>(n) * n);
+    std::vector<std::uint8_t> cell(both.size());
+    for (int row = 0; row < n; ++row)
+        for (int col = 0; col < n; ++col) {
+            const int ya = out.y0 + (out.y1 - out.y0) * row / n, yb = out.y0 + (out.y1 - out.y0) * (row + 1) / n;
+            const int xa = out.x0 + (out.x1 - out.x0) * col / n, xb = out.x0 + (out.x1 - out.x0) * (col + 1) / n;
+            std::fill(cell.begin(), cell.end(), std::uint8_t{0});
+            RegionRatio& r = out.cells[static_cast<std::size_t>(row) * n + col];
+            for (int y = ya; y < yb; ++y)
+                for (int x = xa; x < xb; ++x) {
+                    const std::size_t i = static_cast<std::size_t>(y) * w + x;
+                    cell[i] = both[i];
+                    r.pixels += both[i];
+                }
+            double ra[3], rb[3], magnitude[3];
+            mean_hair_radiance(a, ma, cell, ra, magnitude);
+            mean_hair_radiance(b, mb, cell, rb, magnitude);
+            for (int c = 0; c < 3; ++c)
+                r.radiance_ratio[c] = r.pixels > 0 && ra[c] != 0.0 ? rb[c] / ra[c] : std::numeric_limits<double>::quiet_NaN();
+        }
+    return out;
+}
+
 // RMS over `both` and the three channels of p − G_σ * p.
 double detail_rms(const Planes& p, const std::vector<std::uint8_t>& both) {
     return std::sqrt(masked_mse(p, gaussian_blur(p, kDetailSigma), both));
@@ -527,7 +567,7 @@ double detail_rms(const Planes& p, const std::vector<std::uint8_t>& both) {
 }  // namespace
 
 AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairMasks& masks, const Planes& ta, const Planes& tb,
-                                     double blur_sigma, const std::string& names) {
+                                     double blur_sigma, const std::string& names, int regions) {
     AppearanceMetrics m;
     m.blur_sigma = blur_sigma;
     const bool own_masks = !masks.a.rule.empty() && !masks.b.rule.empty();
@@ -559,6 +599,7 @@ AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairM
     m.detail_a = detail_rms(ta, both);
     m.detail_b = detail_rms(tb, both);
     m.detail_ratio = m.detail_a > 0 ? m.detail_b / m.detail_a : std::numeric_limits<double>::quiet_NaN();
+    if (regions > 0) m.regions = region_ratios(a, ma, b, mb, masks.either, both, regions);
     return m;
 }
 
@@ -570,6 +611,9 @@ void validate(const CompareOptions& o) {
         throw Error::parameter("option --ppd", "must be a positive number of pixels per degree");
     if (!(o.blur_sigma > 0) || !std::isfinite(o.blur_sigma) || o.blur_sigma > 1000)
         throw Error::parameter("option --blur", "must be a blur sigma in pixels, > 0 and at most 1000");
+    if (o.regions < 0 || o.regions > kMaxRegions)
+        throw Error::parameter("option --regions", "must be a number of regions along each side, 0 (none) to " +
+                                                       std::to_string(kMaxRegions));
 }
 
 CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& o, const std::string& a_name,
@@ -627,7 +671,7 @@ CompareResult compare_images(const Image& a, const Image& b, const CompareOption
     r.tone_mapped_all.psnr_db = psnr(ta, tb, all, 1.0);
     r.tone_mapped_all.ssim = masked_mean(ssim_t, all);
     r.tone_mapped_all.flip = masked_mean(r.flip_tone_mapped, all);
-    r.appearance = appearance_metrics(a, b, masks, ta, tb, o.blur_sigma, a_name + " vs " + b_name);
+    r.appearance = appearance_metrics(a, b, masks, ta, tb, o.blur_sigma, a_name + " vs " + b_name, o.regions);
     return r;
 }
 

@@ -48,6 +48,10 @@
 //                   image − G_1px * image (σ = kDetailSigma): fibre structure; a smeared texture has < 1,
 //                   a noisy one > 1.
 //   FLIP            as above, at the stated pixels per degree (CompareOptions::pixels_per_degree).
+//   radiance ratio by region (CompareOptions::regions = N > 0): the box around "either" cut into N × N
+//                   regions of equal size (rows from the top), each region's radiance ratio as above over its
+//                   pixels of "both": where in the image the hair is too bright or too dark, which one mean hides
+//                   when errors of opposite sign cancel.
 //
 // ── Mask of hair pixels (the metrics are means over it; counts are reported) ──
 //   Each image gets its own mask; the mask used is their union (a pixel that is hair in either image).
@@ -81,6 +85,9 @@ inline constexpr double kLinearPeakPercentile = 0.99;
 inline constexpr double kDefaultBlurSigma = 2.0;
 // σ of the detail ratio's low-pass: 1 px keeps only what changes from pixel to pixel (fibres).
 inline constexpr double kDetailSigma = 1.0;
+// The most regions along each side of CompareOptions::regions: beyond it a region of a 360 × 240 render's hair holds
+// too few pixels for its mean to say much.
+inline constexpr int kMaxRegions = 16;
 
 enum class MaskMode { automatic, alpha, background, none };
 MaskMode parse_mask_mode(const std::string& text);  // "auto" | "alpha" | "background" | "none"
@@ -144,6 +151,17 @@ struct MetricSet {
     double flip = 0;      // mean FLIP
 };
 
+// One region of the radiance ratio by region (CompareOptions::regions).
+struct RegionRatio {
+    std::size_t pixels = 0;        // its pixels that are hair in both images
+    double radiance_ratio[3] = {};  // B / A per channel over them (NaN where A's is 0 or there are none)
+};
+struct RegionRatios {
+    int n = 0;                        // regions along each side; 0 = not asked for
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the box around "either", [x0, x1) × [y0, y1), pixels, y down
+    std::vector<RegionRatio> cells;   // n × n, row by row from the top
+};
+
 struct AppearanceMetrics {
     std::size_t pixels_a = 0, pixels_b = 0, pixels_both = 0, pixels_either = 0;
     double mask_iou = 0;                            // NaN when an image gives no mask of its own
@@ -157,18 +175,20 @@ struct AppearanceMetrics {
     // under a quarter of the mean |pixel − background| (dark hair over the default blue-grey). Empty otherwise; `coif
     // compare` prints it as a warning.
     std::string radiance_warning;
+    RegionRatios regions;  // the radiance ratio by region, when asked for
 };
 
 // The appearance metrics alone, from both images, their masks and their tone-mapped planes (compare_images
 // calls it). Throws coif::Error naming `names` when no pixel is hair in both images.
 AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairMasks& masks, const Planes& ta, const Planes& tb,
-                                     double blur_sigma, const std::string& names);
+                                     double blur_sigma, const std::string& names, int regions = 0);
 
 struct CompareOptions {
     MaskMode mask = MaskMode::automatic;
     float exposure = 0.0f;   // stops, for the tone-mapped metrics
     double pixels_per_degree = kFlipPixelsPerDegree;
     double blur_sigma = kDefaultBlurSigma;  // pixels, > 0
+    int regions = 0;  // the radiance ratio by region over N × N regions (AppearanceMetrics::regions); 0..kMaxRegions
 };
 
 struct CompareResult {
@@ -184,7 +204,7 @@ struct CompareResult {
 };
 
 // Throws coif::Error::parameter naming the option for a non-finite exposure, a pixels-per-degree that is not
-// positive, or a blur σ outside (0, 1000] (compare_images calls it; a command calls it before reading images).
+// positive, a blur σ outside (0, 1000] or regions outside 0..kMaxRegions (compare_images calls it; a command calls it before reading images).
 void validate(const CompareOptions& options);
 
 // Compares A (reference) and B (test). Throws coif::Error (naming a_name/b_name) if the sizes differ,

@@ -274,6 +274,64 @@ TEST(CompareAppearance, BadBlurOrNoOverlapIsAClearError) {
     }
 }
 
+// The radiance ratio by region: B is twice A's radiance over the left half of the hair's box and half of it over the
+// right half, so the one mean is (2 + 0.5) / 2 = 1.25 where no pixel is off by that, and 2 × 2 regions give 2 and 0.5
+// (float rounding of the sums: 1e-5). The box is the hair's, and a region with no hair in both images has no ratio.
+TEST(CompareAppearance, RadianceRatioByRegionShowsWhatTheOneMeanHides) {
+    Image a(48, 32, 4), b(48, 32, 4);
+    for (int y = 8; y < 24; ++y)
+        for (int x = 8; x < 40; ++x) {
+            float* pa = a.at(x, y);
+            float* pb = b.at(x, y);
+            for (int c = 0; c < 3; ++c) {
+                pa[c] = 0.2f + 0.1f * c;
+                pb[c] = pa[c] * (x < 24 ? 2.0f : 0.5f);
+            }
+            pa[3] = pb[3] = 1.0f;
+        }
+    CompareOptions o;
+    o.regions = 2;
+    const AppearanceMetrics m = compare_images(a, b, o).appearance;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.radiance_ratio[c], 1.25, 1e-5);
+    const RegionRatios& g = m.regions;
+    ASSERT_EQ(g.n, 2);
+    ASSERT_EQ(g.cells.size(), 4u);
+    EXPECT_EQ(g.x0, 8);
+    EXPECT_EQ(g.y0, 8);
+    EXPECT_EQ(g.x1, 40);
+    EXPECT_EQ(g.y1, 24);
+    for (int row = 0; row < 2; ++row)
+        for (int col = 0; col < 2; ++col) {
+            const RegionRatio& r = g.cells[static_cast<std::size_t>(row * 2 + col)];
+            EXPECT_EQ(r.pixels, 128u);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.radiance_ratio[c], col == 0 ? 2.0 : 0.5, 1e-5);
+        }
+    EXPECT_EQ(compare_images(a, b, {}).appearance.regions.n, 0) << "not asked for";
+    // Hair in the top-left corner of the box only: the other regions hold none, and say so.
+    Image c = a;
+    for (int y = 16; y < 24; ++y)
+        for (int x = 8; x < 40; ++x) c.at(x, y)[3] = 0.0f;
+    for (int y = 8; y < 16; ++y)
+        for (int x = 24; x < 40; ++x) c.at(x, y)[3] = 0.0f;
+    o.mask = MaskMode::alpha;
+    const RegionRatios corner = compare_images(c, c, o).appearance.regions;
+    EXPECT_EQ(corner.x1, 24);
+    EXPECT_EQ(corner.y1, 16);
+    EXPECT_EQ(corner.cells[0].pixels, 32u);  // the box is 16 × 8: each region is 8 × 4
+    EXPECT_NEAR(corner.cells[0].radiance_ratio[0], 1.0, 1e-6);
+    for (int r = 0; r < 4; ++r) EXPECT_GT(corner.cells[static_cast<std::size_t>(r)].pixels, 0u) << "the box is the hair's own";
+    for (int bad : {-1, kMaxRegions + 1}) {
+        CompareOptions w;
+        w.regions = bad;
+        try {
+            compare_images(a, b, w);
+            FAIL() << "expected coif::Error for regions " << bad;
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr("--regions"));
+        }
+    }
+}
+
 TEST(CompareCli, ThresholdsSetTheExitStatus) {
     const fs::path dir = test::scratch_dir("compare-gates");
     const Image a = strokes(64, 48, 7, 0.05f);
@@ -292,8 +350,18 @@ TEST(CompareCli, ThresholdsSetTheExitStatus) {
     EXPECT_EQ(doc["appearance"]["mask_iou"].get<double>(), 1.0);
     EXPECT_FALSE(doc["gates"][0]["pass"].get<bool>());
     for (const char* key : {"blurred_psnr_db", "blurred_ssim", "detail_ratio", "blur_sigma_px"}) EXPECT_TRUE(doc["appearance"].contains(key)) << key;
+    EXPECT_TRUE(doc["appearance"]["regions"].is_null()) << "not asked for";
+    const test::RunResult by_region = test::run_coif(ab + "--regions 3 --json");
+    ASSERT_EQ(by_region.exit_code, 0) << by_region.err;
+    const auto regions = nlohmann::json::parse(by_region.out)["appearance"]["regions"];
+    EXPECT_EQ(regions["n"].get<int>(), 3);
+    ASSERT_EQ(regions["rows"].size(), 3u);
+    ASSERT_EQ(regions["rows"][0].size(), 3u);
+    EXPECT_NEAR(regions["rows"][1][1]["radiance_ratio"][0].get<double>(), 0.5, 1e-5);
+    EXPECT_THAT(test::run_coif(ab + "--regions 2").out, HasSubstr("radiance ratio by region"));
     // Bad options: exit 1 or 2, a message naming the option, and no heatmap.
-    for (const std::string bad : {"--blur 0", "--blur -2", "--blur nan", "--detail-range 2 1", "--radiance-range nan 1", "--min-iou nan"}) {
+    for (const std::string bad :
+         {"--blur 0", "--blur -2", "--blur nan", "--detail-range 2 1", "--radiance-range nan 1", "--min-iou nan", "--regions 17"}) {
         const test::RunResult r = test::run_coif(ab + bad + " --heatmap '" + (dir / "h.png").string() + "'");
         EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 2) << bad << ": " << r.exit_code;
         EXPECT_THAT(r.err, HasSubstr(bad.substr(0, bad.find(' ')))) << bad;
