@@ -186,7 +186,7 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 
 // ---- ShadowPass ------------------------------------------------------------------------------------
 
-double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, bool narrow_start) const {
+double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, bool narrow_start, float outward) const {
     const int used = lit_rows(gpu.lighting_rows, lit_step);  // validates
     glFinish();
     const auto t0 = Clock::now();
@@ -200,6 +200,7 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, boo
     glUniform1i(p.uniform("u_light_count"), gpu.light_count);
     glUniform1i(p.uniform("u_rays"), kShadowRays);
     glUniform1i(p.uniform("u_narrow_start"), narrow_start ? 1 : 0);
+    glUniform1f(p.uniform("u_outward"), outward);
     glUniform1i(p.uniform("u_rows"), gpu.lighting_rows);
     glUniform1i(p.uniform("u_lit_step"), lit_step);
     glUniform1i(p.uniform("u_used"), used);

@@ -155,7 +155,9 @@ public:
     // lit_step: the lighting pass's step along each cluster's samples (lit_rows): only those samples are marched, and
     // the ones between get their neighbours' linear interpolation (a second, cheap dispatch).
     // narrow_start: rays start at most the own cluster's narrow half-axis out (ShellSettings::shadow_neighbours).
-    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1, bool narrow_start = false) const;
+    // outward: the share of the cluster's radius the rays start from its axis toward the hair's outside
+    // (ShellSettings::shadow_outward).
+    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1, bool narrow_start = false, float outward = 0.0f) const;
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};

@@ -43,12 +43,13 @@ constexpr float kLightingStepMaxAngle = 4.0f * static_cast<float>(kPi) / 180.0f;
 }  // namespace
 
 // The shadow pass's inputs when it last ran (it reruns only when they or the lights change): the fibres' radius, the
-// lighting step it marched at and where its rays start (ShellSettings::shadow_neighbours).
+// lighting step it marched at and where its rays start (ShellSettings::shadow_neighbours, shadow_outward).
 struct ShadowKey {
     bool valid = false;
     float radius = -1.0f;
     int step = 0;
     bool narrow = false;
+    float outward = 0.0f;
     bool operator==(const ShadowKey&) const = default;
 };
 
@@ -467,9 +468,9 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     const int step = m.lighting_step(s.lighting_step);
     const int shadow_step = s.lighting_per_fragment ? 1 : step;
     timings_.shadows_ms = 0;
-    const ShadowKey shadow_key{true, radius, shadow_step, s.shadow_neighbours};
+    const ShadowKey shadow_key{true, radius, shadow_step, s.shadow_neighbours, s.shadow_outward};
     if (!floor_only && s.shadows && gpu.light_count > 0 && m.shadow_key != shadow_key) {
-        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours);
+        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours, s.shadow_outward);
         m.shadow_key = shadow_key;
         m.lighting_key.valid = false;  // the sums read the shadows
     }

@@ -162,6 +162,10 @@ ParamTable<ShellSettings> make_table() {
                               "shadows between clusters start at the own cluster's narrow half-axis, counting the "
                               "neighbours that overlap its ellipse (false: where the ray leaves the ellipse)",
                               [](auto& s) -> auto& { return s.shadow_neighbours; }));
+    t.push_back(real_param<S>("shadow_outward", "share of the cluster's radius", 0.0, 1.0,
+                              "shadows between clusters start this far from each cluster's axis toward the hair's outside, "
+                              "where the camera sees its fibres (0: at the axis)",
+                              [](auto& s) -> auto& { return s.shadow_outward; }));
     Param<S> spread = real_param<S>("tangent_spread_deg", "deg", 0.0, 60.0,
                                     "RMS spread of fibre tangents about the cluster axes, lit as a ring of tangents (0: one; absent: the style's, measured)",
                                     [](auto& s) -> auto& { return s.tangent_spread; });

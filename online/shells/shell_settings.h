@@ -43,6 +43,12 @@ struct ShellSettings {
     // that they count the neighbouring clusters whose fibres overlap its ellipse (false: where the ray leaves the
     // ellipse; shaders/gl/shell_shadow.comp).
     bool shadow_neighbours = true;
+    // The shadows between clusters are taken on the cluster's outer side, where the camera sees its fibres: each lighting
+    // sample's rays start this share of the cluster's radius from its axis toward the hair's outside (down the strands'
+    // density gradient, across the axis), not at the axis (0). At the crown, a light that grazes the hair crosses far
+    // fewer fibres on the way to the outermost ones than on the way to the axis (docs/quality.md, "The shadows on the
+    // cluster's outer side"; shaders/gl/shell_shadow.comp).
+    float shadow_outward = 0.5f;
     // Radius (scene units) of the fibres that the shadows between clusters count (online/shells/shadow_grid.h);
     // 0: coif reference's auto radius of the same strands (models/strands.h auto_fiber_radius), so that both
     // renderers' fibres block the same light.

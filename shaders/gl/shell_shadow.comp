@@ -17,6 +17,11 @@
 // (shaders/lighting/own_cluster.glsl). Rays from the axis through the own cluster, the
 // earlier rule, gave every fibre of a cluster its axis's light: docs/quality.md measures both.
 //
+// The rays are the shadows of the fibres the camera sees, on the cluster's outer side: they leave from the point
+// u_outward of the cluster's radius out from the axis toward the hair's outside (outward_shift), not from the axis. A
+// light that grazes the hair, as most of a sky does at the crown, crosses the neighbours lying beside the axis but
+// passes above the outermost fibres' (docs/quality.md, "The shadows on the cluster's outer side").
+//
 // Only the lit samples are marched: every u_lit_step-th of each cluster's u_rows (ShellSettings::lighting_step, as the
 // lighting pass lights them), u_used per cluster. SHADOW_FILL 1 is the second dispatch when u_lit_step > 1: each sample
 // between two lit ones gets their linear interpolation, so that every sample holds its shadows (for the per-fragment
@@ -51,6 +56,7 @@ uniform int u_sample_count;
 uniform int u_light_count;
 uniform int u_rays;
 uniform int u_narrow_start;  // 1: rays start at most the own cluster's narrow half-axis out (ShellSettings::shadow_neighbours)
+uniform float u_outward;     // the share of the cluster's radius the rays start toward the hair's outside (shadow_outward)
 uniform int u_rows;   // lighting samples per cluster
 uniform int u_lit_step;  // every u_lit_step-th is lit (the last is)
 uniform int u_used;   // lit samples per cluster
@@ -81,6 +87,48 @@ vec2 optical_depth(vec3 p, vec3 d) {
 #endif
     }
     return vec2(sum, body) * h;
+}
+
+// Where sample s's rays leave from, relative to its axis point: u_outward of the cluster's radius toward the hair's
+// outside, across the axis T. The outside is down the gradient of the strands' length per volume (tr M), by central
+// differences just outside the own cluster: along each world axis, the ellipse's radius that way across T plus two
+// voxels either side (two voxels alone for an axis within 17° of T), so that the hair around the cluster sets it and
+// not its own fibres. The shift is weighed by how clearly the density falls that way, |∇ tr M| times four voxels
+// against the mean tr M of the six points (at most 1): none in hair of even density, which has no outer side to speak
+// of. Measured against the rule with two voxels alone and against the shift's size: docs/quality.md.
+vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
+    if (u_outward <= 0.0) return vec3(0.0);
+    vec3 p = s.position.xyz;
+    vec3 e2_own = cross(T, e1_own);  // the ellipse's half-axes: A along e1_own, B along e2_own
+    vec3 g = vec3(0.0);
+    float mean = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        vec3 e = vec3(0.0);
+        e[a] = 1.0;
+        vec3 across = e - dot(e, T) * T;
+        float len = length(across);
+        float h = 2.0 * u_step;
+        if (len > 0.3) {
+            float ex = dot(across, e1_own) / (len * max(s.position.w, 1e-6));
+            float ey = dot(across, e2_own) / (len * max(s.tangent.w, 1e-6));
+            h += 1.0 / sqrt(max(ex * ex + ey * ey, 1e-12));
+        }
+        e[a] = h;
+        vec4 up = textureLod(u_density, (p + e - u_grid_min) / u_grid_extent, 0.0);
+        vec4 down = textureLod(u_density, (p - e - u_grid_min) / u_grid_extent, 0.0);
+        float m_up = up.x + up.y + up.z, m_down = down.x + down.y + down.z;
+        g[a] = (m_up - m_down) / (2.0 * h);
+        mean += (m_up + m_down) / 6.0;
+    }
+    g -= dot(g, T) * T;
+    float slope = length(g);
+    if (!(slope > 0.0) || !(mean > 0.0)) return vec3(0.0);
+    vec3 out_dir = -g / slope;
+    // The ellipse's radius along out_dir.
+    float x = dot(out_dir, e1_own) / max(s.position.w, 1e-6), y = dot(out_dir, e2_own) / max(s.tangent.w, 1e-6);
+    float radius = 1.0 / sqrt(max(x * x + y * y, 1e-12));
+    float weight = min(slope * 4.0 * u_step / mean, 1.0);
+    return (u_outward * weight * radius) * out_dir;
 }
 
 #if SHADOW_FILL
@@ -115,6 +163,7 @@ void main() {
     vec3 e2 = cross(l, e1);
     float direct = 0.0;
     float fibres = 0.0;
+    vec3 origin = s.position.xyz + outward_shift(s, T, e1_own);
     for (int r = 0; r < u_rays; ++r) {
         // Ray r carries the r-th of u_rays equal shares of the light's energy, from the centre out (srbf_lobe_cos),
         // turned by the golden angle from the one before.
@@ -122,7 +171,7 @@ void main() {
         float phi = GOLDEN_ANGLE * float(r);
         vec3 d = normalize(c * l + sqrt(max(1.0 - c * c, 0.0)) * (cos(phi) * e1 + sin(phi) * e2));
         float start = own_cluster_shadow_start(d, T, e1_own, s.position.w, s.tangent.w, u_narrow_start != 0) + 2.0 * u_step;
-        vec2 depth = optical_depth(s.position.xyz + start * d, d);
+        vec2 depth = optical_depth(origin + start * d, d);
         float tau = u_width * depth.x;
 #if SHADOW_BODY
         tau += min(u_body_opacity * depth.y, u_body_max_depth);

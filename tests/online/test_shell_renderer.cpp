@@ -169,6 +169,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     settings.lod_lighting = false;  // whatever the clusters' levels of detail
     settings.key_lights = 0;        // the light in the lighting pass's sums, shadowed from the axis
     settings.fiber_radius = 0.05f;  // fibres of radius r: τ = 2r × the strands' projected length per area
+    settings.shadow_outward = 0.0f;  // rays from the axes, as the CPU march below (the next test moves them out)
     // Rays start outside the own cluster (its share is each fragment's: shaders/lighting/own_cluster.glsl), so
     // c0 sees the light unshadowed.
     renderer.draw(camera, settings);
@@ -252,6 +253,97 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     EXPECT_GT(renderer.timings().shadows_ms, 0.0) << "a changed radius reruns the pass";
     const std::vector<glm::vec2> half = renderer.read_shadows();
     for (std::size_t i = 0; i < half.size(); ++i) EXPECT_NEAR(half[i].y, 0.5f * sh[i].y, 1e-5f * sh[i].y + 1e-7f) << i;
+}
+
+// ShellSettings::shadow_outward: the shadow rays leave from the cluster's outer side. Two rows of three round clusters
+// (radius 1, 2 apart along x) one behind the other along z (at ±0.9, so that they overlap), lit by a narrow light along
+// −x, grazing both rows. The middle cluster of the front row (x = 0) has the hair's outside toward +z (the back row
+// lies at −z; its row's neighbours at ±x cancel), and the back row's middle cluster toward −z. The rule of
+// shaders/gl/shell_shadow.comp (outward_shift), taken again here on the CPU through the same grid: down the gradient
+// of tr M by central differences just outside the own cluster (its radius along each axis across it, plus two
+// voxels), u_outward of the radius that way, weighed by |∇ tr M| 4 voxels / the mean tr M (at most 1). The fibres met
+// from there against the same march on the CPU (3 %, as the test above); and the rays must have moved: the rule finds
+// each row's outside, and the count differs from the rays' from the axis.
+TEST(ShellRenderer, ShadowRaysLeaveFromTheClustersOuterSide) {
+    auto context = gl::Context::headless();
+    std::string clusters;
+    for (int row = 0; row < 2; ++row)
+        for (int k = 0; k < 3; ++k) {
+            const float x = 2.0f * static_cast<float>(k - 1), z = row == 0 ? 0.9f : -0.9f;
+            char c[400];
+            std::snprintf(c, sizeof c,
+                          R"(%s{"name": "c%d%d", "trajectory": [[%g, 0, %g], [%g, -2, %g], [%g, -4, %g]], "a": [1.0], "b": [1.0],
+                          "theta_deg": [0], "density": {"kind": "uniform", "value": 2.0}})",
+                          clusters.empty() ? "" : ",", row, k, x, z, x, z, x, z);
+            clusters += c;
+        }
+    const HairStyle style = parse_style(R"({"format": "coif-style", "version": 1,
+      "layout": {"core_radius": 0.2, "layers": 4, "s_t": 4, "s_u": 8, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+      "clusters": [)" + clusters + "]}",
+                                        "<two rows>");
+    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
+    SrbfLight light;
+    light.L = glm::vec3(1.0f);
+    light.omega = glm::vec3(-1.0f, 0.0f, 0.0f);
+    light.lambda = 0.02f;
+    const SrbfLight lights[] = {light};
+    renderer.set_lights(lights);
+    const Camera camera = front_camera(renderer);
+    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
+    target.bind();
+    gl::ShellSettings settings;
+    settings.lighting_step = 1;
+    settings.lod_lighting = false;
+    settings.key_lights = 0;
+    settings.fiber_radius = 0.05f;
+    settings.shadow_outward = 0.0f;
+    renderer.draw(camera, settings);
+    const std::vector<glm::vec2> axis = renderer.read_shadows();
+    settings.shadow_outward = 0.5f;
+    renderer.draw(camera, settings);
+    EXPECT_GT(renderer.timings().shadows_ms, 0.0) << "a changed start reruns the pass";
+    const std::vector<glm::vec2> outer = renderer.read_shadows();
+    const int rows = renderer.lighting_rows();
+    ASSERT_EQ(outer.size(), static_cast<std::size_t>(6 * rows));
+    const DensityGrid grid = voxelize_strands(sample_strands(style, StrandSampling{}), glm::mat3(1.0f), 64);
+    const auto tr_m = [&](glm::vec3 p) { return grid.projected(p, glm::vec3(0.0f)); };  // √(tr M · tr M)
+    for (const int cluster : {1, 4}) {  // the middle of the front row, then of the back row
+        const float side = cluster == 1 ? 1.0f : -1.0f;
+        for (int r = 1; r + 1 < rows; ++r) {
+            const std::size_t i = static_cast<std::size_t>(cluster * rows + r);
+            const glm::vec3 axis_point = renderer.lighting_sample(i)[0];
+            glm::vec3 g(0.0f);
+            float mean = 0.0f;
+            for (int k = 0; k < 3; ++k) {
+                glm::vec3 e(0.0f);
+                e[k] = 2.0f * grid.voxel + (k == 1 ? 0.0f : 1.0f);  // y runs along the axis: two voxels alone
+                g[k] = (tr_m(axis_point + e) - tr_m(axis_point - e)) / (2.0f * e[k]);
+                mean += (tr_m(axis_point + e) + tr_m(axis_point - e)) / 6.0f;
+            }
+            g.y = 0.0f;  // across the axis, which runs along −y
+            const float weight = std::min(glm::length(g) * 4.0f * grid.voxel / mean, 1.0f);
+            const glm::vec3 shift = 0.5f * weight * 1.0f * (-g / glm::length(g));  // radius 1 every way
+            EXPECT_GT(side * shift.z, 0.1f) << "cluster " << cluster << ", row " << r << ": the hair's outside";
+            // Mostly across the rows: the neighbours at ±x are strands drawn from their densities (768 a plane), so they
+            // cancel only roughly (measured: x 0.07-0.10 against z 0.15).
+            EXPECT_LT(std::abs(shift.x), std::abs(shift.z)) << "cluster " << cluster << ", row " << r;
+            double n_cpu = 0;  // the pass's lobe, as in the test above
+            for (int k = 0; k < 7; ++k) {
+                const float c = glsl::srbf_lobe_cos(light.lambda, 1.0f - (static_cast<float>(k) + 0.5f) / 7.0f);
+                const float phi = 2.39996322973f * static_cast<float>(k);
+                const glm::vec3 d = glm::normalize(c * light.omega + std::sqrt(std::max(1.0f - c * c, 0.0f)) *
+                                                                         (std::cos(phi) * glm::vec3(0.0f, 0.0f, -1.0f) +
+                                                                          std::sin(phi) * glm::vec3(0.0f, -1.0f, 0.0f)));
+                const float start = 1.0f / std::max(std::sqrt(1.0f - d.y * d.y), 0.25f) + 2.0f * grid.voxel;
+                n_cpu += 2.0 * 0.05 * grid.integrate(axis_point + shift + start * d, d, 8.0f, 0.25f * grid.voxel) / 7.0;
+            }
+            EXPECT_NEAR(outer[i].y, n_cpu, 0.03 * n_cpu) << "cluster " << cluster << ", row " << r;
+            EXPECT_GT(std::abs(outer[i].y - axis[i].y), 0.05f * axis[i].y) << "cluster " << cluster << ", row " << r;
+            if (r == 1)
+                std::printf("cluster %d: shift (%.2f, %.2f, %.2f); fibres met from the axis %.2f, from its outer side %.2f (CPU %.2f)\n",
+                            cluster, shift.x, shift.y, shift.z, axis[i].y, outer[i].y, n_cpu);
+        }
+    }
 }
 
 // ShellSettings::key_lights: the brightest light's shadow volume (KeyLightPass, shaders/gl/shell_key_light.comp) holds

@@ -86,6 +86,8 @@ TEST_F(ShellSettingsFile, CompositingModeByName) {
     EXPECT_EQ(refusal(R"({"kbuffer_slots": 17})").rfind("JSON /kbuffer_slots: ", 0), 0u);  // 1..kMaxKBufferSlots
     EXPECT_EQ(refusal(R"({"kbuffer_slots": 0})").rfind("JSON /kbuffer_slots: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"light_cull": 0.6})").rfind("JSON /light_cull: ", 0), 0u);  // 0..0.5
+    EXPECT_EQ(refusal(R"({"shadow_outward": 1.5})").rfind("JSON /shadow_outward: ", 0), 0u);  // 0..1
+    EXPECT_EQ(refusal(R"({"shadow_outward": -0.1})").rfind("JSON /shadow_outward: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"compositing": true})").rfind("JSON /compositing: ", 0), 0u);
 }
 
@@ -103,6 +105,7 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.own_cluster_shadow = false;
     s.own_cluster_forward = !gl::ShellSettings{}.own_cluster_forward;
     s.shadow_neighbours = !gl::ShellSettings{}.shadow_neighbours;
+    s.shadow_outward = 0.25f;
     s.tilt_per_strip = false;
     s.sector_per_strip = false;
     s.fiber_radius = 0.03f;
