@@ -150,25 +150,60 @@ HairStyle two_cluster_style() {
     return parse_style(text, "<two clusters>");
 }
 
+// A narrow light along −x (λ = 0.02), and the settings under which the shadow pass's counts are read back: every sample
+// lit, as read_lighting() reads them, whatever the clusters' levels of detail, the light in the lighting pass's sums
+// (no key light) and fibres of radius 0.05.
+SrbfLight narrow_light_along_minus_x() {
+    SrbfLight light;
+    light.L = glm::vec3(1.0f);
+    light.omega = glm::vec3(-1.0f, 0.0f, 0.0f);
+    light.lambda = 0.02f;
+    return light;
+}
+// Lights the renderer by `light` alone; the camera to draw it with (front_camera).
+Camera lit_by(gl::ShellRenderer& renderer, const SrbfLight& light) {
+    const SrbfLight lights[] = {light};
+    renderer.set_lights(lights);
+    return front_camera(renderer);
+}
+gl::ShellSettings shadow_pass_settings() {
+    gl::ShellSettings settings;
+    settings.lighting_step = 1;
+    settings.lod_lighting = false;
+    settings.key_lights = 0;
+    settings.fiber_radius = 0.05f;  // fibres of radius r: τ = 2r × the strands' projected length per area
+    return settings;
+}
+
+// The fibres of radius 0.05 that the shadow pass's rays toward `light` (narrow_light_along_minus_x) meet from p, marched
+// on the CPU through `grid`, each ray starting where it leaves a round cluster of radius 1 along −y, plus two voxels:
+// the pass's lobe of 7 rays, each one seventh of the light's energy (srbf_lobe_cos), turned by the golden angle about
+// the light, for λ = 0.02 at most 0.1 cm from the centre ray. The pass's basis about ω = −x: e1 = ω × y = −z,
+// e2 = ω × e1 = −y.
+double cpu_fibres_met(const DensityGrid& grid, const SrbfLight& light, glm::vec3 p) {
+    double n = 0;
+    for (int k = 0; k < 7; ++k) {
+        const float c = glsl::srbf_lobe_cos(light.lambda, 1.0f - (static_cast<float>(k) + 0.5f) / 7.0f);
+        const float phi = 2.39996322973f * static_cast<float>(k);
+        const glm::vec3 d = glm::normalize(c * light.omega + std::sqrt(std::max(1.0f - c * c, 0.0f)) *
+                                                                 (std::cos(phi) * glm::vec3(0.0f, 0.0f, -1.0f) +
+                                                                  std::sin(phi) * glm::vec3(0.0f, -1.0f, 0.0f)));
+        const float start = 1.0f / std::max(std::sqrt(1.0f - d.y * d.y), 0.25f) + 2.0f * grid.voxel;
+        n += 2.0 * 0.05 * grid.integrate(p + start * d, d, 8.0f, 0.25f * grid.voxel) / 7.0;
+    }
+    return n;
+}
+
 TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
     auto context = gl::Context::headless();
     const HairStyle style = two_cluster_style();
     gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
     // A narrow light along −x: cluster c1 (x = 3) is lit through c0.
-    SrbfLight light;
-    light.L = glm::vec3(1.0f);
-    light.omega = glm::vec3(-1.0f, 0.0f, 0.0f);
-    light.lambda = 0.02f;
-    const SrbfLight lights[] = {light};
-    renderer.set_lights(lights);
-    const Camera camera = front_camera(renderer);
+    const SrbfLight light = narrow_light_along_minus_x();
+    const Camera camera = lit_by(renderer, light);
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
-    gl::ShellSettings settings;
-    settings.lighting_step = 1;  // every sample lit, as read_lighting() reads them,
-    settings.lod_lighting = false;  // whatever the clusters' levels of detail
-    settings.key_lights = 0;        // the light in the lighting pass's sums, shadowed from the axis
-    settings.fiber_radius = 0.05f;  // fibres of radius r: τ = 2r × the strands' projected length per area
+    gl::ShellSettings settings = shadow_pass_settings();
     settings.shadow_outward = 0.0f;  // rays from the axes, as the CPU march below (the next test moves them out)
     // Rays start outside the own cluster (its share is each fragment's: shaders/lighting/own_cluster.glsl), so
     // c0 sees the light unshadowed.
@@ -192,18 +227,7 @@ TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
         EXPECT_GT(lit.x, 0.999f) << "row " << r;
         EXPECT_LT(lit.y, 1e-3f) << "row " << r;
         EXPECT_LT(behind.x, 1e-6f) << "row " << r;
-        const glm::vec3 p = renderer.lighting_sample(static_cast<std::size_t>(rows + r))[0];
-        double n_cpu = 0;  // the pass's lobe: 7 rays, each one seventh of the light's energy (srbf_lobe_cos), turned by the
-        for (int k = 0; k < 7; ++k) {  // golden angle about the light; for λ = 0.02 at most 0.1 cm from the centre ray
-            const float c = glsl::srbf_lobe_cos(light.lambda, 1.0f - (static_cast<float>(k) + 0.5f) / 7.0f);
-            const float phi = 2.39996322973f * static_cast<float>(k);
-            // The pass's basis about ω = −x: e1 = ω × y = −z, e2 = ω × e1 = −y.
-            const glm::vec3 d = glm::normalize(c * light.omega + std::sqrt(std::max(1.0f - c * c, 0.0f)) *
-                                                                     (std::cos(phi) * glm::vec3(0.0f, 0.0f, -1.0f) +
-                                                                      std::sin(phi) * glm::vec3(0.0f, -1.0f, 0.0f)));
-            const float start = 1.0f / std::max(std::sqrt(1.0f - d.y * d.y), 0.25f) + 2.0f * grid.voxel;
-            n_cpu += 2.0 * 0.05 * grid.integrate(p + start * d, d, 8.0f, 0.25f * grid.voxel) / 7.0;
-        }
+        const double n_cpu = cpu_fibres_met(grid, light, renderer.lighting_sample(static_cast<std::size_t>(rows + r))[0]);
         EXPECT_NEAR(behind.y, n_cpu, 0.03 * n_cpu) << "row " << r;
         EXPECT_NEAR(behind.y, analytic, 0.3 * analytic) << "row " << r;
         if (r == 1) std::printf("fibres met behind the occluder: GPU %.2f, CPU %.2f, analytic %.2f\n", behind.y, n_cpu, analytic);
@@ -282,20 +306,11 @@ TEST(ShellRenderer, ShadowRaysLeaveFromTheClustersOuterSide) {
       "clusters": [)" + clusters + "]}",
                                         "<two rows>");
     gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
-    SrbfLight light;
-    light.L = glm::vec3(1.0f);
-    light.omega = glm::vec3(-1.0f, 0.0f, 0.0f);
-    light.lambda = 0.02f;
-    const SrbfLight lights[] = {light};
-    renderer.set_lights(lights);
-    const Camera camera = front_camera(renderer);
+    const SrbfLight light = narrow_light_along_minus_x();
+    const Camera camera = lit_by(renderer, light);
     gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
     target.bind();
-    gl::ShellSettings settings;
-    settings.lighting_step = 1;
-    settings.lod_lighting = false;
-    settings.key_lights = 0;
-    settings.fiber_radius = 0.05f;
+    gl::ShellSettings settings = shadow_pass_settings();
     settings.shadow_outward = 0.0f;
     renderer.draw(camera, settings);
     const std::vector<glm::vec2> axis = renderer.read_shadows();
@@ -327,16 +342,7 @@ TEST(ShellRenderer, ShadowRaysLeaveFromTheClustersOuterSide) {
             // Mostly across the rows: the neighbours at ±x are strands drawn from their densities (768 a plane), so they
             // cancel only roughly (measured: x 0.07-0.10 against z 0.15).
             EXPECT_LT(std::abs(shift.x), std::abs(shift.z)) << "cluster " << cluster << ", row " << r;
-            double n_cpu = 0;  // the pass's lobe, as in the test above
-            for (int k = 0; k < 7; ++k) {
-                const float c = glsl::srbf_lobe_cos(light.lambda, 1.0f - (static_cast<float>(k) + 0.5f) / 7.0f);
-                const float phi = 2.39996322973f * static_cast<float>(k);
-                const glm::vec3 d = glm::normalize(c * light.omega + std::sqrt(std::max(1.0f - c * c, 0.0f)) *
-                                                                         (std::cos(phi) * glm::vec3(0.0f, 0.0f, -1.0f) +
-                                                                          std::sin(phi) * glm::vec3(0.0f, -1.0f, 0.0f)));
-                const float start = 1.0f / std::max(std::sqrt(1.0f - d.y * d.y), 0.25f) + 2.0f * grid.voxel;
-                n_cpu += 2.0 * 0.05 * grid.integrate(axis_point + shift + start * d, d, 8.0f, 0.25f * grid.voxel) / 7.0;
-            }
+            const double n_cpu = cpu_fibres_met(grid, light, axis_point + shift);
             EXPECT_NEAR(outer[i].y, n_cpu, 0.03 * n_cpu) << "cluster " << cluster << ", row " << r;
             EXPECT_GT(std::abs(outer[i].y - axis[i].y), 0.05f * axis[i].y) << "cluster " << cluster << ", row " << r;
             if (r == 1)
