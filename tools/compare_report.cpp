@@ -39,8 +39,6 @@ std::string in_range(const std::vector<double>& r) {
     return s;
 }
 
-}  // namespace
-
 // The radiance ratio by region: null when not asked for; else its box and rows of regions from the top.
 nlohmann::json regions_json(const RegionRatios& g) {
     if (g.n == 0) return nullptr;
@@ -55,6 +53,8 @@ nlohmann::json regions_json(const RegionRatios& g) {
     }
     return {{"n", g.n}, {"box", {g.x0, g.y0, g.x1, g.y1}}, {"rows", rows}};
 }
+
+}  // namespace
 
 nlohmann::json appearance_json(const AppearanceMetrics& m) {
     return {{"regions", regions_json(m.regions)},

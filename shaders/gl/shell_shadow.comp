@@ -99,7 +99,6 @@ vec2 optical_depth(vec3 p, vec3 d) {
 vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
     if (u_outward <= 0.0) return vec3(0.0);
     vec3 p = s.position.xyz;
-    vec3 e2_own = cross(T, e1_own);  // the ellipse's half-axes: A along e1_own, B along e2_own
     vec3 g = vec3(0.0);
     float mean = 0.0;
     for (int a = 0; a < 3; ++a) {
@@ -107,12 +106,8 @@ vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
         e[a] = 1.0;
         vec3 across = e - dot(e, T) * T;
         float len = length(across);
-        float h = 2.0 * u_step;
-        if (len > 0.3) {
-            float ex = dot(across, e1_own) / (len * max(s.position.w, 1e-6));
-            float ey = dot(across, e2_own) / (len * max(s.tangent.w, 1e-6));
-            h += 1.0 / sqrt(max(ex * ex + ey * ey, 1e-12));
-        }
+        // The ellipse's radius that way: own_cluster_exit of a direction across the axis (its stretch is 1).
+        float h = 2.0 * u_step + (len > 0.3 ? own_cluster_exit(across / len, T, e1_own, s.position.w, s.tangent.w) : 0.0);
         e[a] = h;
         vec4 up = textureLod(u_density, (p + e - u_grid_min) / u_grid_extent, 0.0);
         vec4 down = textureLod(u_density, (p - e - u_grid_min) / u_grid_extent, 0.0);
@@ -124,9 +119,7 @@ vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
     float slope = length(g);
     if (!(slope > 0.0) || !(mean > 0.0)) return vec3(0.0);
     vec3 out_dir = -g / slope;
-    // The ellipse's radius along out_dir.
-    float x = dot(out_dir, e1_own) / max(s.position.w, 1e-6), y = dot(out_dir, e2_own) / max(s.tangent.w, 1e-6);
-    float radius = 1.0 / sqrt(max(x * x + y * y, 1e-12));
+    float radius = own_cluster_exit(out_dir, T, e1_own, s.position.w, s.tangent.w);  // across the axis: the ellipse's radius
     float weight = min(slope * 4.0 * u_step / mean, 1.0);
     return (u_outward * weight * radius) * out_dir;
 }
