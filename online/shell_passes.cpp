@@ -115,7 +115,9 @@ void ShellGpu::set_lights(std::span<const SrbfLight> l) {
     light_values.assign(l.begin(), l.end());
     lights = make_lights_buffer(l);
     light_count = static_cast<int>(l.size());
-    shadows = make_buffer(nullptr, l.size() * sample_count * sizeof(glm::vec2));
+    // (T̃, n) per sample and light, then each sample's own cluster's depth toward the hair's inside as two vec2
+    // (shaders/gl/shell_shadow.comp inner_depth): they go with the shadows wherever those are kept per instance.
+    shadows = make_buffer(nullptr, (l.size() + 2) * sample_count * sizeof(glm::vec2));
 }
 
 void ShellGpu::set_placement(std::span<const ShellInstance> in, std::span<const LightingSample> s) {
@@ -186,7 +188,7 @@ void ShellGpu::set_absorption(const AbsorptionMap* map) {
 
 // ---- ShadowPass ------------------------------------------------------------------------------------
 
-double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, bool narrow_start, float outward) const {
+double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, bool narrow_start, float outward, bool inner) const {
     const int used = lit_rows(gpu.lighting_rows, lit_step);  // validates
     glFinish();
     const auto t0 = Clock::now();
@@ -201,6 +203,7 @@ double ShadowPass::run(const ShellGpu& gpu, float fibre_width, int lit_step, boo
     glUniform1i(p.uniform("u_rays"), kShadowRays);
     glUniform1i(p.uniform("u_narrow_start"), narrow_start ? 1 : 0);
     glUniform1f(p.uniform("u_outward"), outward);
+    glUniform1i(p.uniform("u_inner"), inner ? 1 : 0);
     glUniform1i(p.uniform("u_rows"), gpu.lighting_rows);
     glUniform1i(p.uniform("u_lit_step"), lit_step);
     glUniform1i(p.uniform("u_used"), used);
@@ -329,6 +332,8 @@ void LightingPass::bind_inputs(const Program& prog, const ShellGpu& gpu, const S
     set_lighting_uniforms(prog, s.hair.fibre, s.hair.config);
     glUniform1i(prog.uniform("u_light_count"), gpu.light_count);
     glUniform1i(prog.uniform("u_shadows"), s.shadows && gpu.light_count > 0 ? 1 : 0);
+    glUniform1i(prog.uniform("u_shadow_samples"), static_cast<GLint>(gpu.sample_count));
+    glUniform1f(prog.uniform("u_own_inner"), s.own_cluster_shadow ? s.own_cluster_inner : 0.0f);
     glUniform1i(prog.uniform("u_absorption_on"), gpu.absorption_on ? 1 : 0);
     if (gpu.absorption_on) {
         glBindTextureUnit(2 + shading::kLutCount, gpu.absorption.id());
@@ -383,8 +388,9 @@ std::vector<glm::ivec2> lit_samples(int rows, int step, std::span<const int> str
 bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::vec3& eye, LightingKey& key,
                        std::span<const int> levels) {
     const std::vector<int> strides = lit_strides(gpu, levels);
+    const float own_inner = s.own_cluster_shadow ? s.own_cluster_inner : 0.0f;
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
-                      key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull &&
+                      key.own_inner == own_inner && key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull &&
                       key.key_lights == key_lights(gpu, s) && key.eye == eye &&
                       key.lights_stamp == gpu.lights_stamp &&
                       key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp &&
@@ -419,7 +425,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true, s.hair, s.shadows, s.tangent_spread, s.lighting_step, s.light_cull, keys, eye, gpu.lights_stamp,
+    key = {true, s.hair, s.shadows, own_inner, s.tangent_spread, s.lighting_step, s.light_cull, keys, eye, gpu.lights_stamp,
            gpu.absorption_stamp, gpu.geometry_stamp, strides};
     return true;
 }

@@ -156,8 +156,10 @@ public:
     // the ones between get their neighbours' linear interpolation (a second, cheap dispatch).
     // narrow_start: rays start at most the own cluster's narrow half-axis out (ShellSettings::shadow_neighbours).
     // outward: the share of the cluster's radius the rays start from its axis toward the hair's outside
-    // (ShellSettings::shadow_outward).
-    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1, bool narrow_start = false, float outward = 0.0f) const;
+    // (ShellSettings::shadow_outward). inner: also write each sample's own cluster's depth toward the hair's inside after
+    // the (T̃, n) (ShellGpu::shadows; ShellSettings::own_cluster_inner), else zeros there.
+    double run(const ShellGpu& gpu, float fibre_width, int lit_step = 1, bool narrow_start = false, float outward = 0.0f,
+               bool inner = false) const;
 
 private:
     Program program_{{"shaders/gl/shell_shadow.comp"}};
@@ -172,6 +174,7 @@ struct LightingKey {
     bool valid = false;
     shading::HairParameters hair;
     bool shadows = false;
+    float own_inner = 0.0f;  // ShellSettings::own_cluster_inner where own_cluster_shadow, else 0
     float tangent_spread = 0.0f;
     int step = 1;
     float light_cull = 0.0f;

@@ -43,13 +43,15 @@ constexpr float kLightingStepMaxAngle = 4.0f * static_cast<float>(kPi) / 180.0f;
 }  // namespace
 
 // The shadow pass's inputs when it last ran (it reruns only when they or the lights change): the fibres' radius, the
-// lighting step it marched at and where its rays start (ShellSettings::shadow_neighbours, shadow_outward).
+// lighting step it marched at, where its rays start (ShellSettings::shadow_neighbours, shadow_outward) and whether it
+// writes the own cluster's inner depths (own_cluster_inner).
 struct ShadowKey {
     bool valid = false;
     float radius = -1.0f;
     int step = 0;
     bool narrow = false;
     float outward = 0.0f;
+    bool inner = false;
     bool operator==(const ShadowKey&) const = default;
 };
 
@@ -468,9 +470,10 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     const int step = m.lighting_step(s.lighting_step);
     const int shadow_step = s.lighting_per_fragment ? 1 : step;
     timings_.shadows_ms = 0;
-    const ShadowKey shadow_key{true, radius, shadow_step, s.shadow_neighbours, s.shadow_outward};
+    const bool inner = s.own_cluster_shadow && s.own_cluster_inner > 0.0f;
+    const ShadowKey shadow_key{true, radius, shadow_step, s.shadow_neighbours, s.shadow_outward, inner};
     if (!floor_only && s.shadows && gpu.light_count > 0 && m.shadow_key != shadow_key) {
-        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours, s.shadow_outward);
+        timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours, s.shadow_outward, inner);
         m.shadow_key = shadow_key;
         m.lighting_key.valid = false;  // the sums read the shadows
     }
@@ -597,6 +600,17 @@ std::vector<glm::vec2> ShellRenderer::read_shadows() const {
     const ShellGpu& g = *impl_->gpu;
     std::vector<glm::vec2> out(g.sample_count * static_cast<std::size_t>(g.light_count));
     if (!out.empty()) glGetNamedBufferSubData(g.shadows.id(), 0, static_cast<GLsizeiptr>(out.size() * sizeof(glm::vec2)), out.data());
+    return out;
+}
+
+std::vector<glm::vec3> ShellRenderer::read_inner_depths() const {
+    const ShellGpu& g = *impl_->gpu;
+    std::vector<glm::vec2> raw(2 * g.sample_count);
+    if (raw.empty() || g.light_count == 0) return {};
+    glGetNamedBufferSubData(g.shadows.id(), static_cast<GLintptr>(g.sample_count * static_cast<std::size_t>(g.light_count) * sizeof(glm::vec2)),
+                            static_cast<GLsizeiptr>(raw.size() * sizeof(glm::vec2)), raw.data());
+    std::vector<glm::vec3> out(g.sample_count);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(raw[2 * i], raw[2 * i + 1].x);
     return out;
 }
 

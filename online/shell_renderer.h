@@ -211,6 +211,9 @@ public:
     // The shadow pass's output of the last draw that ran it: (T̃, n) per lighting sample (cluster-major,
     // as lighting_sample) and light.
     std::vector<glm::vec2> read_shadows() const;
+    // The same pass's own cluster's depth toward the hair's inside per lighting sample (shaders/gl/shell_shadow.comp
+    // inner_depth): weight · fibres per radius across the cluster toward the hair's outside · that direction.
+    std::vector<glm::vec3> read_inner_depths() const;
     // Key light m's shadow volume (ShellSettings::key_lights) as the last draw made it: the fibres met toward the light
     // per voxel (x fastest), its dimensions, the shells' space → texture coordinates map and the light's index; empty
     // values when there is no such key light.

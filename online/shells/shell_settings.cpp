@@ -166,6 +166,11 @@ ParamTable<ShellSettings> make_table() {
                               "shadows between clusters start this far from each cluster's axis toward the hair's outside, "
                               "where the camera sees its fibres (0: at the axis)",
                               [](auto& s) -> auto& { return s.shadow_outward; }));
+    t.push_back(real_param<S>("own_cluster_inner", "share of the grid's count", 0.0, 4.0,
+                              "with own_cluster_shadow and shadows, each cluster's side toward the hair's inside takes at "
+                              "least this share of the shadow grid's fibres across the cluster as its own shadow (0: the "
+                              "layers' coverage alone)",
+                              [](auto& s) -> auto& { return s.own_cluster_inner; }));
     Param<S> spread = real_param<S>("tangent_spread_deg", "deg", 0.0, 60.0,
                                     "RMS spread of fibre tangents about the cluster axes, lit as a ring of tangents (0: one; absent: the style's, measured)",
                                     [](auto& s) -> auto& { return s.tangent_spread; });

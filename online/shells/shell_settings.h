@@ -49,6 +49,13 @@ struct ShellSettings {
     // fewer fibres on the way to the outermost ones than on the way to the axis (docs/quality.md, "The shadows on the
     // cluster's outer side"; shaders/gl/shell_shadow.comp).
     float shadow_outward = 0.5f;
+    // With own_cluster_shadow and shadows, the own cluster's side toward the hair's inside is shaded through the whole
+    // cluster as the shadow grid counts it: its optical depth per radius is at least this share of the grid's fibres
+    // across the cluster toward the hair's outside (shaders/gl/shell_shadow.comp inner_depth, weighed by how clearly the
+    // hair has an outside there and by the cosine of the fragment's side to the inside), where the records' coverage
+    // Σ ᾱ undercounts a cluster that light from outside crosses whole. 0: Σ ᾱ alone on every side, the image before it.
+    // 2 by the sweeps (docs/quality.md, "The cluster's side toward the hair's inside": 1 to 4 measured).
+    float own_cluster_inner = 2.0f;
     // Radius (scene units) of the fibres that the shadows between clusters count (online/shells/shadow_grid.h);
     // 0: coif reference's auto radius of the same strands (models/strands.h auto_fiber_radius), so that both
     // renderers' fibres block the same light.

@@ -33,7 +33,7 @@ out vec4 v_L3;
 out vec4 v_L4;
 out vec4 v_L5;
 out vec4 v_L6;
-out float v_L7;  // texel 7's x: the lights' mean own_cluster_stretch (shell_lighting.comp)
+out vec3 v_L7;  // texel 7's x, z, w: the lights' mean own_cluster_stretch, the own cluster's inner depth (shell_lighting.comp)
 #if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
 out vec4 v_L8;   // texel 8: each fibre tangent's lum(C_0)
 out vec4 v_L10;  // texels 10..13: each tangent's lum(C_1), lum(S_1), lum(C_2), lum(S_2)
@@ -86,7 +86,7 @@ void main() {
     v_L4 = lighting_fetch(a_texcoord.y, inst.info.y, 4);
     v_L5 = lighting_fetch(a_texcoord.y, inst.info.y, 5);
     v_L6 = lighting_fetch(a_texcoord.y, inst.info.y, 6);
-    v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).x;
+    v_L7 = lighting_fetch(a_texcoord.y, inst.info.y, 7).xzw;
 #if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
     v_L8 = lighting_fetch(a_texcoord.y, inst.info.y, 8);
     v_L10 = lighting_fetch(a_texcoord.y, inst.info.y, 10);

@@ -11,9 +11,13 @@
 #include "shaders/gl/sector_frame.glsl"
 #include "shaders/lighting/fibre_tangents.glsl"
 
-layout(std430, binding = 4) readonly buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
+// (T̃, n) per sample × light, then the own cluster's depth toward the hair's inside per sample (shell_shadow.comp
+// inner_depth, as two vec2)
+layout(std430, binding = 4) readonly buffer Shadows { vec2 shadows[]; };
 
 uniform int u_shadows;   // shadows between clusters on/off
+uniform int u_shadow_samples;  // the lighting samples: where the inner depths start in `shadows`
+uniform float u_own_inner;     // ShellSettings::own_cluster_inner
 uniform int u_absorption_on;     // painted absorption (models/absorption_map.h) on/off
 uniform sampler2D u_absorption;  // σa per lighting sample: texel (row, cluster), RGB32F
 uniform float u_d_f;     // Zinke's forward density factor d_f
@@ -23,6 +27,15 @@ float light_luminance(int j) { return luminance(lights[j].radiance.rgb); }
 
 // Light j's shadow (T̃, n) at lighting sample i: the shadow pass's, or unoccluded (1, 0) with shadows off.
 vec2 sample_shadow(int i, int j) { return u_shadows != 0 ? shadows[i * u_light_count + j] : vec2(1.0, 0.0); }
+
+// The own cluster's fibres per cluster radius toward the hair's outside at lighting sample i, as a vector along that
+// direction (shell_shadow.comp inner_depth), times ShellSettings::own_cluster_inner; 0 with shadows off, which make no
+// grid.
+vec3 sample_inner(int i) {
+    if (u_shadows == 0 || u_own_inner <= 0.0) return vec3(0.0);
+    int at = u_shadow_samples * u_light_count + 2 * i;
+    return u_own_inner * vec3(shadows[at], shadows[at + 1].x);
+}
 
 // Light j's radiance at point p, shadowed by sh = (T̃, n); `lum_visible` adds lum(L_j) T̃_j and
 // `lum_total` lum(L_j) (the shadow AOV).

@@ -14,7 +14,8 @@
 // Σ_j lum(L_j) (the shadow AOV); the 29th is the factor by which the lights' angles to the axis lengthen their
 // paths across the own cluster in the Fourier path: own_cluster_stretch (shaders/lighting/own_cluster.glsl) of each
 // light, averaged with the weights lum(w_j); the 30th the number of lights lit (all of them unless culled, below);
-// texel 7's last two are 0.
+// the 31st and 32nd the own cluster's fibres per radius toward the hair's outside (sample_inner) in the frame (r0, T × r0),
+// by which the shells shade the cluster's side toward the hair's inside (own_cluster.glsl own_cluster_tau).
 // Texel 8 holds lum(C_0) of each fibre tangent q alone, (Σ_j w_jq over the four), on C_0's scale (all four lum(C_0)
 // with one tangent), and texels 10..13 that tangent's first two harmonics in luminance, lum(C_1), lum(S_1), lum(C_2),
 // lum(S_2) (each texel one harmonic, component q the tangent): the shells light each strip of a sector as one fibre at
@@ -242,8 +243,10 @@ void main() {
 #else
     v[29] = float(u_light_count);
 #endif
-    v[30] = 0.0;
-    v[31] = 0.0;
+    // The own cluster's depth toward the hair's inside, in the sample's frame (r0, T × r0) as the sums' azimuths are.
+    vec3 inner = sample_inner(i);
+    v[30] = dot(inner, r0);
+    v[31] = dot(inner, cross(T, r0));
     for (int m = 0; m < 8; ++m)
         imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + m), vec4(v[4 * m], v[4 * m + 1], v[4 * m + 2], v[4 * m + 3]));
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 8), tangent_lum);

@@ -111,7 +111,7 @@ centroid in vec4 v_L3;
 centroid in vec4 v_L4;
 centroid in vec4 v_L5;
 centroid in vec4 v_L6;
-centroid in float v_L7;
+centroid in vec3 v_L7;
 #if SHELL_TILT_PICK == 1
 centroid in vec4 v_L8;
 centroid in vec4 v_L10;
@@ -374,6 +374,10 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     fibre_tangent_of(T, r, tm, ta, tb, fibre_strip_tangent(top, x), SHELL_TANGENTS, Tq, rq);
     SrbfPoint strip_point = srbf_point(hp, V, Tq, rq);
 #endif
+#if SHELL_OWN != 0
+    // The own cluster's depth per radius (own_cluster_tau), the inner depth between the two samples around t.
+    float own_tau = own_cluster_tau(tau_r, mix(sample_inner(first), sample_inner(first + 1), f), r);
+#endif
     vec3 lit = vec3(0.0);
     vec3 C0 = vec3(0.0);
     float visible = 0.0;
@@ -417,14 +421,14 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(own_on * tau_r * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), rho,
+        own_cluster_harmonics(own_on * own_tau * own_cluster_stretch(normalize(lights[j].direction_lambda.xyz), T), rho,
                               t0.yzw, t1, t2.xy, h01, h23, h4);
         float re = re_at(h01, h23, h4, th, d1, d2, d3, d4);
 #elif SHELL_OWN == 2
         // As SHELL_OWN 1 with the forward-scattered light (own_cluster_forward_series), per channel, at this light's
         // own angle to the axis: ā_f at θd = its longitudinal angle, as the lighting pass takes it.
         vec3 lj = normalize(lights[j].direction_lambda.xyz);
-        float tau_j = own_on * tau_r * own_cluster_stretch(lj, T);
+        float tau_j = own_on * own_tau * own_cluster_stretch(lj, T);
         vec3 loss = vec3(1.0) - fetch_ms_forward(safe_asin(dot(lj, T)), hp.sigma_a).rgb;
         float p0;
         vec4 p1234;
@@ -462,7 +466,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     //         fraction of the light (Σ_j lum L_j T̃_j / Σ_j lum L_j).
 #if SHELL_LIGHTING == 1
     vec4 L0 = v_L0, L1 = v_L1, L2 = v_L2, L3 = v_L3, L4 = v_L4, L5 = v_L5, L6 = v_L6;
-    float L7 = v_L7;
+    vec3 L7 = v_L7;
 #else
     vec4 L0 = lighting_fetch(texcoord.y, info.y, 0);
     vec4 L1 = lighting_fetch(texcoord.y, info.y, 1);
@@ -471,7 +475,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec4 L4 = lighting_fetch(texcoord.y, info.y, 4);
     vec4 L5 = lighting_fetch(texcoord.y, info.y, 5);
     vec4 L6 = lighting_fetch(texcoord.y, info.y, 6);
-    float L7 = lighting_fetch(texcoord.y, info.y, 7).x;
+    vec3 L7 = lighting_fetch(texcoord.y, info.y, 7).xzw;
 #endif
     vec3 C0 = L0.xyz;
 #if SHELL_DEBUG == 3
@@ -498,12 +502,17 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec4 raw23 = t1;
     vec2 raw4 = t2.xy;
 #endif
+#if SHELL_OWN != 0
+    // The own cluster's depth per radius at this fragment, stretched by the lights' mean angle to the axis: at least the
+    // grid's count across the cluster on its side toward the hair's inside (own_cluster_tau).
+    float own_tau = own_cluster_tau(tau_r, L7.yz, e1) * L7.x;
+#endif
 #if SHELL_OWN == 1
     {  // re(θl) times the own cluster's transmittance at θl, as harmonics (shaders/lighting/own_cluster.glsl)
         vec3 h01;
         vec4 h23;
         vec2 h4;
-        own_cluster_harmonics(tau_r * L7, rho, t0.yzw, t1, t2.xy, h01, h23, h4);
+        own_cluster_harmonics(own_tau, rho, t0.yzw, t1, t2.xy, h01, h23, h4);
         t0.yzw = h01;
         t1 = h23;
         t2.xy = h4;
@@ -522,12 +531,12 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         float p0;
         vec4 p1234;
         vec4 p5678;
-        own_cluster_series(tau_r * L7, rho, p0, p1234, p5678);
+        own_cluster_series(own_tau, rho, p0, p1234, p5678);
         for (int c = 0; c < 3; ++c) {
             float q0;
             vec4 q1234;
             vec4 q5678;
-            own_cluster_forward_series(tau_r * L7, rho, loss[c], u_d_f, p0, p1234, p5678, q0, q1234, q5678);
+            own_cluster_forward_series(own_tau, rho, loss[c], u_d_f, p0, p1234, p5678, q0, q1234, q5678);
             vec3 h01;
             vec4 h23;
             vec2 h4;

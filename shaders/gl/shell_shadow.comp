@@ -44,7 +44,8 @@ struct GpuLight {
     vec4 radiance;
 };
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
-layout(std430, binding = 4) buffer Shadows { vec2 shadows[]; };  // (T̃, n) per sample × light
+// (T̃, n) per sample × light, then inner_depth per sample as two vec2 (online/shell_passes.h ShellGpu::shadows)
+layout(std430, binding = 4) buffer Shadows { vec2 shadows[]; };
 
 uniform sampler3D u_density;      // M per unit volume: (xx, yy, zz, xy)
 uniform sampler3D u_density_off;  // (xz, yz)
@@ -57,6 +58,7 @@ uniform int u_light_count;
 uniform int u_rays;
 uniform int u_narrow_start;  // 1: rays start at most the own cluster's narrow half-axis out (ShellSettings::shadow_neighbours)
 uniform float u_outward;     // the share of the cluster's radius the rays start toward the hair's outside (shadow_outward)
+uniform int u_inner;         // 1: write inner_depth per sample (ShellSettings::own_cluster_inner > 0), else zeros
 uniform int u_rows;   // lighting samples per cluster
 uniform int u_lit_step;  // every u_lit_step-th is lit (the last is)
 uniform int u_used;   // lit samples per cluster
@@ -65,6 +67,16 @@ uniform sampler3D u_body;
 uniform float u_body_opacity;    // optical depth per world unit through a body voxel
 uniform float u_body_max_depth;  // per ray
 #endif
+
+void write_inner(int i, vec3 v) {
+    int at = u_sample_count * u_light_count + 2 * i;
+    shadows[at] = v.xy;
+    shadows[at + 1] = vec2(v.z, 0.0);
+}
+vec3 read_inner(int i) {
+    int at = u_sample_count * u_light_count + 2 * i;
+    return vec3(shadows[at], shadows[at + 1].x);
+}
 
 const float GOLDEN_ANGLE = 2.39996322973;  // π (3 − √5): successive rays' turn about the light's axis
 
@@ -89,15 +101,15 @@ vec2 optical_depth(vec3 p, vec3 d) {
     return vec2(sum, body) * h;
 }
 
-// Where sample s's rays leave from, relative to its axis point: u_outward of the cluster's radius toward the hair's
-// outside, across the axis T. The outside is down the gradient of the strands' length per volume (tr M), by central
-// differences just outside the own cluster: along each world axis, the ellipse's radius that way across T plus two
-// voxels either side (two voxels alone for an axis within 17° of T), so that the hair around the cluster sets it and
-// not its own fibres. The shift is weighed by how clearly the density falls that way, |∇ tr M| times four voxels
-// against the mean tr M of the six points (at most 1): none in hair of even density, which has no outer side to speak
-// of. Measured against the rule with two voxels alone and against the shift's size: docs/quality.md.
-vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
-    if (u_outward <= 0.0) return vec3(0.0);
+// The hair's outside at sample s, across its axis T: down the gradient of the strands' length per volume (tr M), by
+// central differences just outside the own cluster: along each world axis, the ellipse's radius that way across T plus
+// two voxels either side (two voxels alone for an axis within 17° of T), so that the hair around the cluster sets it and
+// not its own fibres. `weight` is how clearly the density falls that way, |∇ tr M| times four voxels against the mean
+// tr M of the six points (at most 1): 0 in hair of even density, which has no outer side to speak of. Returns false
+// (weight 0) where there is no gradient. Measured against the rule with two voxels alone: docs/quality.md.
+bool hair_outside(LightingSample s, vec3 T, vec3 e1_own, out vec3 out_dir, out float weight) {
+    out_dir = vec3(0.0);
+    weight = 0.0;
     vec3 p = s.position.xyz;
     vec3 g = vec3(0.0);
     float mean = 0.0;
@@ -117,11 +129,39 @@ vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
     }
     g -= dot(g, T) * T;
     float slope = length(g);
-    if (!(slope > 0.0) || !(mean > 0.0)) return vec3(0.0);
-    vec3 out_dir = -g / slope;
+    if (!(slope > 0.0) || !(mean > 0.0)) return false;
+    out_dir = -g / slope;
+    weight = min(slope * 4.0 * u_step / mean, 1.0);
+    return true;
+}
+
+// Where sample s's rays leave from, relative to its axis point: u_outward of the cluster's radius toward the hair's
+// outside (hair_outside), across the axis T, weighed by how clearly the hair has an outside there.
+vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
+    vec3 out_dir;
+    float weight;
+    if (u_outward <= 0.0 || !hair_outside(s, T, e1_own, out_dir, weight)) return vec3(0.0);
     float radius = own_cluster_exit(out_dir, T, e1_own, s.position.w, s.tangent.w);  // across the axis: the ellipse's radius
-    float weight = min(slope * 4.0 * u_step / mean, 1.0);
     return (u_outward * weight * radius) * out_dir;
+}
+
+// The own cluster's fibres met across it toward the hair's outside, per cluster radius, as a vector: weight · τ_out ·
+// out_dir (hair_outside), with τ_out half the grid's count along the ellipse's diameter that way. The shells shade the
+// cluster's side toward the hair's inside by it (shaders/lighting/own_cluster.glsl own_cluster_inner_tau): there the
+// light from outside crosses the whole cluster, whose fibres the records' coverage undercounts.
+vec3 inner_depth(LightingSample s, vec3 T, vec3 e1_own) {
+    vec3 out_dir;
+    float weight;
+    if (!hair_outside(s, T, e1_own, out_dir, weight)) return vec3(0.0);
+    float radius = own_cluster_exit(out_dir, T, e1_own, s.position.w, s.tangent.w);
+    vec3 from = s.position.xyz - radius * out_dir;
+    int n = max(int(ceil(4.0 * radius / u_step)), 2);  // half-voxel steps over the diameter
+    float h = 2.0 * radius / float(n);
+    MarchDirection md = march_direction(out_dir);
+    float sum = 0.0;
+    for (int k = 0; k < n; ++k)
+        sum += projected_density(u_density, u_density_off, (from + out_dir * ((float(k) + 0.5) * h) - u_grid_min) / u_grid_extent, md);
+    return (weight * 0.5 * u_width * sum * h) * out_dir;
 }
 
 #if SHADOW_FILL
@@ -134,8 +174,9 @@ void main() {
     int lower = (row / u_lit_step) * u_lit_step;
     if (lower == row) return;  // lit
     int first = i - row + lower;
-    shadows[id] = mix(shadows[first * u_light_count + j], shadows[(first + u_lit_step) * u_light_count + j],
-                      float(row - lower) / float(u_lit_step));
+    float f = float(row - lower) / float(u_lit_step);
+    shadows[id] = mix(shadows[first * u_light_count + j], shadows[(first + u_lit_step) * u_light_count + j], f);
+    if (j == 0) write_inner(i, mix(read_inner(first), read_inner(first + u_lit_step), f));
 }
 #else
 void main() {
@@ -157,6 +198,7 @@ void main() {
     float direct = 0.0;
     float fibres = 0.0;
     vec3 origin = s.position.xyz + outward_shift(s, T, e1_own);
+    if (j == 0) write_inner(i, u_inner != 0 ? inner_depth(s, T, e1_own) : vec3(0.0));
     for (int r = 0; r < u_rays; ++r) {
         // Ray r carries the r-th of u_rays equal shares of the light's energy, from the centre out (srbf_lobe_cos),
         // turned by the golden angle from the one before.

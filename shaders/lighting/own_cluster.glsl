@@ -75,6 +75,15 @@ COIF_FN float own_cluster_shadow_start(vec3 d, vec3 T, vec3 e1, float A, float B
     return narrow ? min(exit_at, min(A, B) * own_cluster_stretch(d, T)) : exit_at;
 }
 
+// The own cluster's optical depth per radius at a fragment whose unit radial direction is r: τ_R = κ_shadow Σ ᾱ, or on
+// the cluster's side toward the hair's inside at least the shadow grid's fibres across it per radius, `inner` the
+// vector weight · τ_out · (toward the hair's outside) of shaders/gl/shell_shadow.comp inner_depth, in r's frame. Light
+// from outside crosses such a side's whole cluster, whose fibres the records' coverage undercounts; the cluster's outer
+// side keeps Σ ᾱ, the coverage through which the camera sees into it (docs/quality.md, "The cluster's side toward the
+// hair's inside").
+COIF_FN float own_cluster_tau(float tau_r, vec2 inner, vec2 r) { return max(tau_r, -dot(inner, r)); }
+COIF_FN float own_cluster_tau(float tau_r, vec3 inner, vec3 r) { return max(tau_r, -dot(inner, r)); }
+
 COIF_FN float own_cluster_transmittance(float tau, float rho, float cos_d, float sin_d) {
     return exp(-tau * own_cluster_path(rho, cos_d, sin_d));
 }

@@ -88,6 +88,8 @@ TEST_F(ShellSettingsFile, CompositingModeByName) {
     EXPECT_EQ(refusal(R"({"light_cull": 0.6})").rfind("JSON /light_cull: ", 0), 0u);  // 0..0.5
     EXPECT_EQ(refusal(R"({"shadow_outward": 1.5})").rfind("JSON /shadow_outward: ", 0), 0u);  // 0..1
     EXPECT_EQ(refusal(R"({"shadow_outward": -0.1})").rfind("JSON /shadow_outward: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"own_cluster_inner": 4.5})").rfind("JSON /own_cluster_inner: ", 0), 0u);  // 0..4
+    EXPECT_EQ(refusal(R"({"own_cluster_inner": -1})").rfind("JSON /own_cluster_inner: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"compositing": true})").rfind("JSON /compositing: ", 0), 0u);
 }
 
@@ -106,6 +108,7 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.own_cluster_forward = !gl::ShellSettings{}.own_cluster_forward;
     s.shadow_neighbours = !gl::ShellSettings{}.shadow_neighbours;
     s.shadow_outward = 0.25f;
+    s.own_cluster_inner = 0.5f;
     s.tilt_per_strip = false;
     s.sector_per_strip = false;
     s.fiber_radius = 0.03f;
