@@ -97,7 +97,9 @@ struct ShellGpu {
     glm::vec3 grid_origin{0.0f}, grid_extent{0.0f};
     float voxel = 1;
     Texture lighting;  // RGBA32F, lighting_rows × clusters · kLightingTexels: the lighting pass's sums
-    Buffer lights, shadows;  // shaders/gl/srbf_lights.glsl lights; (T̃, n) per sample and light
+    // shaders/gl/srbf_lights.glsl lights; (T̃, n) per sample and light, then per sample the own cluster's depth toward
+    // the hair's inside as two vec2 (shaders/gl/shell_shadow.comp inner_depth)
+    Buffer lights, shadows;
     int light_count = 0;
     std::vector<SrbfLight> light_values;  // what `lights` holds
     Texture absorption;  // RGBA32F σa per (lighting row, cluster), when absorption_on

@@ -22,10 +22,14 @@
 // light that grazes the hair, as most of a sky does at the crown, crosses the neighbours lying beside the axis but
 // passes above the outermost fibres' (docs/quality.md, "The shadows on the cluster's outer side").
 //
+// With u_inner, each sample also gets the own cluster's depth toward the hair's inside (inner_depth), after the (T̃, n) of
+// every sample and light: the fragments on that side take it as their own cluster's depth (ShellSettings::
+// own_cluster_inner; docs/quality.md, "The cluster's side toward the hair's inside").
+//
 // Only the lit samples are marched: every u_lit_step-th of each cluster's u_rows (ShellSettings::lighting_step, as the
 // lighting pass lights them), u_used per cluster. SHADOW_FILL 1 is the second dispatch when u_lit_step > 1: each sample
 // between two lit ones gets their linear interpolation, so that every sample holds its shadows (for the per-fragment
-// lighting, which the renderer marches at step 1 anyway, and for read_shadows).
+// lighting, which the renderer marches at step 1 anyway, and for read_shadows), and its inner depth.
 layout(local_size_x = 64) in;
 #ifndef SHADOW_BODY
 #define SHADOW_BODY 0
