@@ -113,10 +113,13 @@ TEST(LightSweepSlow, AKeyLightDrawsTheReferencesShapesUnderOneNarrowLightFrom26D
 // elevation −20°, blue 1.27). With one key light, the default since: 47 of 48 in 0.889–1.284 (the courtyard turned 270°,
 // red 1.28) and 71 of 72 in 0.818–1.261. With its shadow over the layer's slab (since): 47 of 48 in 0.84–1.26 and 69 of
 // 72 in 0.79–1.25 (out: azimuth 315°, elevation 40°, 0.79 in red and green; 270°, −20°, blue 1.2505; azimuth 0°,
-// elevation 40° is in at 0.805). Ratios lie within 0.05 of the band's edges, so the test asks for 45 of 48 and 68 of 72,
-// and every ratio in [0.7, 1.6]: it fails on a return to the maps' 2–6× of the issue, and not on one ratio at the edge
-// moving by the references' noise (well under 1 % of a mean over ~1 500 hair pixels at 64 samples per pixel). Issue 16
-// stays open until every ratio is in the band.
+// elevation 40° is in at 0.805). With the shadows from the cluster's outer side and its side toward the hair's inside
+// (since; docs/quality.md, "The cluster's side toward the hair's inside"): 48 of 48 in 0.84–1.19 and 72 of 72 in
+// 0.85–1.22 (46 and 71 with `own_cluster_inner` 0: the courtyard turned 90° and 270° at 1.31 and 1.28 in red, the view
+// from 270° below at 1.27 in blue). Ratios lie within 0.03–0.04 of the band's edges, so the test asks for 47 of 48 and 71
+// of 72, and every ratio in [0.7, 1.6]: it fails on a return to the maps' 2–6× of the issue, or on two ratios leaving
+// the band, and not on one ratio at the edge moving by the references' noise (well under 1 % of a mean over ~1 500 hair
+// pixels at 64 samples per pixel). Issue 16 stays open until the single lights are in the band too.
 TEST(LightSweepSlow, TheFullModelFollowsTheReferenceUnderEveryMapTurnedAndFromARingOfViews) {
     for (const char* name : {"courtyard", "city", "night", "studio"}) {
         COIF_SHARED_DATA(map, std::string("blender_studiolight_") + name + ".exr");
@@ -131,8 +134,8 @@ TEST(LightSweepSlow, TheFullModelFollowsTheReferenceUnderEveryMapTurnedAndFromAR
                          0.7, 1.6);
     EXPECT_EQ(j["sets"]["maps"]["ratios"], 48);
     EXPECT_EQ(j["sets"]["ring"]["ratios"], 72);
-    EXPECT_GE(j["sets"]["maps"]["in_band"].get<int>(), 45);
-    EXPECT_GE(j["sets"]["ring"]["in_band"].get<int>(), 68);
+    EXPECT_GE(j["sets"]["maps"]["in_band"].get<int>(), 47);
+    EXPECT_GE(j["sets"]["ring"]["in_band"].get<int>(), 71);
     fs::remove_all(dir);
 }
 
