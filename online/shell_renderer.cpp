@@ -470,7 +470,7 @@ void ShellRenderer::passes(const FrameView& view, const ShellDraw& draw, const S
     const int step = m.lighting_step(s.lighting_step);
     const int shadow_step = s.lighting_per_fragment ? 1 : step;
     timings_.shadows_ms = 0;
-    const bool inner = s.own_cluster_shadow && s.own_cluster_inner > 0.0f;
+    const bool inner = s.own_cluster_inner > 0.0f;  // (read with own_cluster_shadow only, which the pass does not know)
     const ShadowKey shadow_key{true, radius, shadow_step, s.shadow_neighbours, s.shadow_outward, inner};
     if (!floor_only && s.shadows && gpu.light_count > 0 && m.shadow_key != shadow_key) {
         timings_.shadows_ms = m.shadow.run(gpu, 2.0f * radius, shadow_step, s.shadow_neighbours, s.shadow_outward, inner);

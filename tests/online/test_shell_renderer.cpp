@@ -318,6 +318,18 @@ glm::vec3 cpu_hair_outside(const DensityGrid& grid, glm::vec3 axis_point) {
     return weight * (-g / glm::length(g));
 }
 
+// Calls f(cluster, side, row, sample, axis point) at every lighting sample but the two ends of the middle cluster of each
+// row of two_rows_style: 1, the front row's, whose hair's outside is toward +z (side 1), then 4, the back row's (−1).
+template <class F>
+void for_each_middle_sample(const gl::ShellRenderer& renderer, F f) {
+    const int rows = renderer.lighting_rows();
+    for (const int cluster : {1, 4})
+        for (int r = 1; r + 1 < rows; ++r) {
+            const std::size_t i = static_cast<std::size_t>(cluster * rows + r);
+            f(cluster, cluster == 1 ? 1.0f : -1.0f, r, i, renderer.lighting_sample(i)[0]);
+        }
+}
+
 // ShellSettings::shadow_outward: the shadow rays leave from the cluster's outer side. Two rows of three round clusters
 // (radius 1, 2 apart along x) one behind the other along z (at ±0.9, so that they overlap), lit by a narrow light along
 // −x, grazing both rows. The middle cluster of the front row (x = 0) has the hair's outside toward +z (the back row
@@ -345,24 +357,19 @@ TEST(ShellRenderer, ShadowRaysLeaveFromTheClustersOuterSide) {
     const int rows = renderer.lighting_rows();
     ASSERT_EQ(outer.size(), static_cast<std::size_t>(6 * rows));
     const DensityGrid grid = voxelize_strands(sample_strands(style, StrandSampling{}), glm::mat3(1.0f), 64);
-    for (const int cluster : {1, 4}) {  // the middle of the front row, then of the back row
-        const float side = cluster == 1 ? 1.0f : -1.0f;
-        for (int r = 1; r + 1 < rows; ++r) {
-            const std::size_t i = static_cast<std::size_t>(cluster * rows + r);
-            const glm::vec3 axis_point = renderer.lighting_sample(i)[0];
-            const glm::vec3 shift = 0.5f * 1.0f * cpu_hair_outside(grid, axis_point);  // radius 1 every way
-            EXPECT_GT(side * shift.z, 0.1f) << "cluster " << cluster << ", row " << r << ": the hair's outside";
-            // Mostly across the rows: the neighbours at ±x are strands drawn from their densities (768 a plane), so they
-            // cancel only roughly (measured: x 0.07-0.10 against z 0.15).
-            EXPECT_LT(std::abs(shift.x), std::abs(shift.z)) << "cluster " << cluster << ", row " << r;
-            const double n_cpu = cpu_fibres_met(grid, light, axis_point + shift);
-            EXPECT_NEAR(outer[i].y, n_cpu, 0.03 * n_cpu) << "cluster " << cluster << ", row " << r;
-            EXPECT_GT(std::abs(outer[i].y - axis[i].y), 0.05f * axis[i].y) << "cluster " << cluster << ", row " << r;
-            if (r == 1)
-                std::printf("cluster %d: shift (%.2f, %.2f, %.2f); fibres met from the axis %.2f, from its outer side %.2f (CPU %.2f)\n",
-                            cluster, shift.x, shift.y, shift.z, axis[i].y, outer[i].y, n_cpu);
-        }
-    }
+    for_each_middle_sample(renderer, [&](int cluster, float side, int r, std::size_t i, glm::vec3 axis_point) {
+        const glm::vec3 shift = 0.5f * 1.0f * cpu_hair_outside(grid, axis_point);  // radius 1 every way
+        EXPECT_GT(side * shift.z, 0.1f) << "cluster " << cluster << ", row " << r << ": the hair's outside";
+        // Mostly across the rows: the neighbours at ±x are strands drawn from their densities (768 a plane), so they
+        // cancel only roughly (measured: x 0.07-0.10 against z 0.15).
+        EXPECT_LT(std::abs(shift.x), std::abs(shift.z)) << "cluster " << cluster << ", row " << r;
+        const double n_cpu = cpu_fibres_met(grid, light, axis_point + shift);
+        EXPECT_NEAR(outer[i].y, n_cpu, 0.03 * n_cpu) << "cluster " << cluster << ", row " << r;
+        EXPECT_GT(std::abs(outer[i].y - axis[i].y), 0.05f * axis[i].y) << "cluster " << cluster << ", row " << r;
+        if (r == 1)
+            std::printf("cluster %d: shift (%.2f, %.2f, %.2f); fibres met from the axis %.2f, from its outer side %.2f (CPU %.2f)\n",
+                        cluster, shift.x, shift.y, shift.z, axis[i].y, outer[i].y, n_cpu);
+    });
 }
 
 // ShellSettings::own_cluster_inner: each cluster's side toward the hair's inside takes the shadow grid's fibres across the
@@ -389,24 +396,19 @@ TEST(ShellRenderer, TheClustersSideTowardTheHairsInsideTakesTheGridsCountAcrossI
     const int rows = renderer.lighting_rows();
     ASSERT_EQ(inner.size(), static_cast<std::size_t>(6 * rows));
     const DensityGrid grid = voxelize_strands(sample_strands(style, StrandSampling{}), glm::mat3(1.0f), 64);
-    for (const int cluster : {1, 4}) {  // the middle of the front row, then of the back row
-        const float side = cluster == 1 ? 1.0f : -1.0f;
-        for (int r = 1; r + 1 < rows; ++r) {
-            const std::size_t i = static_cast<std::size_t>(cluster * rows + r);
-            const glm::vec3 axis_point = renderer.lighting_sample(i)[0];
-            const glm::vec3 outside = cpu_hair_outside(grid, axis_point);
-            const float weight = glm::length(outside);
-            const glm::vec3 out_dir = outside / weight;
-            // Half the fibres of radius 0.05 met along the diameter (radius 1) that way: the fibres per radius.
-            const double cpu = weight * 0.5 * 2.0 * 0.05 * grid.integrate(axis_point - out_dir, out_dir, 2.0f, 0.25f * grid.voxel);
-            EXPECT_NEAR(glm::length(inner[i]), cpu, 0.03 * cpu) << "cluster " << cluster << ", row " << r;
-            EXPECT_GT(glm::dot(glm::normalize(inner[i]), out_dir), std::cos(glm::radians(2.0f))) << "cluster " << cluster << ", row " << r;
-            EXPECT_GT(side * inner[i].z, 0.0f) << "cluster " << cluster << ", row " << r << ": toward the hair's outside";
-            if (r == 1)
-                std::printf("cluster %d: inner depth (%.2f, %.2f, %.2f), CPU %.2f fibres per radius\n", cluster, inner[i].x,
-                            inner[i].y, inner[i].z, cpu);
-        }
-    }
+    for_each_middle_sample(renderer, [&](int cluster, float side, int r, std::size_t i, glm::vec3 axis_point) {
+        const glm::vec3 outside = cpu_hair_outside(grid, axis_point);
+        const float weight = glm::length(outside);
+        const glm::vec3 out_dir = outside / weight;
+        // Half the fibres of radius 0.05 met along the diameter (radius 1) that way: the fibres per radius.
+        const double cpu = weight * 0.5 * 2.0 * 0.05 * grid.integrate(axis_point - out_dir, out_dir, 2.0f, 0.25f * grid.voxel);
+        EXPECT_NEAR(glm::length(inner[i]), cpu, 0.03 * cpu) << "cluster " << cluster << ", row " << r;
+        EXPECT_GT(glm::dot(glm::normalize(inner[i]), out_dir), std::cos(glm::radians(2.0f))) << "cluster " << cluster << ", row " << r;
+        EXPECT_GT(side * inner[i].z, 0.0f) << "cluster " << cluster << ", row " << r << ": toward the hair's outside";
+        if (r == 1)
+            std::printf("cluster %d: inner depth (%.2f, %.2f, %.2f), CPU %.2f fibres per radius\n", cluster, inner[i].x,
+                        inner[i].y, inner[i].z, cpu);
+    });
     settings.own_cluster_inner = 0.0f;
     const Image off = renderer.render(camera, settings);
     double sum_on = 0, sum_off = 0, brightest = 0, most_gained = 0;
