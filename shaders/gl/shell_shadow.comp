@@ -105,15 +105,22 @@ vec2 optical_depth(vec3 p, vec3 d) {
     return vec2(sum, body) * h;
 }
 
+// The hair's outside at a sample, across its axis: the unit direction, how clearly the density falls that way (0 where
+// it does not: no outside), and the own cluster's ellipse radius that way.
+struct Outside {
+    vec3 dir;
+    float weight;
+    float radius;
+};
+
 // The hair's outside at sample s, across its axis T: down the gradient of the strands' length per volume (tr M), by
 // central differences just outside the own cluster: along each world axis, the ellipse's radius that way across T plus
 // two voxels either side (two voxels alone for an axis within 17° of T), so that the hair around the cluster sets it and
-// not its own fibres. `weight` is how clearly the density falls that way, |∇ tr M| times four voxels against the mean
-// tr M of the six points (at most 1): 0 in hair of even density, which has no outer side to speak of. Returns false
-// (weight 0) where there is no gradient. Measured against the rule with two voxels alone: docs/quality.md.
-bool hair_outside(LightingSample s, vec3 T, vec3 e1_own, out vec3 out_dir, out float weight) {
-    out_dir = vec3(0.0);
-    weight = 0.0;
+// not its own fibres. The weight is |∇ tr M| times four voxels against the mean tr M of the six points (at most 1): 0 in
+// hair of even density, which has no outer side to speak of, and where there is no gradient. Measured against the rule
+// with two voxels alone: docs/quality.md.
+Outside hair_outside(LightingSample s, vec3 T, vec3 e1_own) {
+    Outside o = Outside(vec3(0.0), 0.0, 0.0);
     vec3 p = s.position.xyz;
     vec3 g = vec3(0.0);
     float mean = 0.0;
@@ -133,39 +140,31 @@ bool hair_outside(LightingSample s, vec3 T, vec3 e1_own, out vec3 out_dir, out f
     }
     g -= dot(g, T) * T;
     float slope = length(g);
-    if (!(slope > 0.0) || !(mean > 0.0)) return false;
-    out_dir = -g / slope;
-    weight = min(slope * 4.0 * u_step / mean, 1.0);
-    return true;
+    if (!(slope > 0.0) || !(mean > 0.0)) return o;
+    o.dir = -g / slope;
+    o.weight = min(slope * 4.0 * u_step / mean, 1.0);
+    o.radius = own_cluster_exit(o.dir, T, e1_own, s.position.w, s.tangent.w);  // across the axis: the ellipse's radius
+    return o;
 }
 
 // Where sample s's rays leave from, relative to its axis point: u_outward of the cluster's radius toward the hair's
-// outside (hair_outside), across the axis T, weighed by how clearly the hair has an outside there.
-vec3 outward_shift(LightingSample s, vec3 T, vec3 e1_own) {
-    vec3 out_dir;
-    float weight;
-    if (u_outward <= 0.0 || !hair_outside(s, T, e1_own, out_dir, weight)) return vec3(0.0);
-    float radius = own_cluster_exit(out_dir, T, e1_own, s.position.w, s.tangent.w);  // across the axis: the ellipse's radius
-    return (u_outward * weight * radius) * out_dir;
-}
+// outside, weighed by how clearly the hair has an outside there.
+vec3 outward_shift(Outside o) { return (u_outward * o.weight * o.radius) * o.dir; }
 
 // The own cluster's fibres met across it toward the hair's outside, per cluster radius, as a vector: weight · τ_out ·
-// out_dir (hair_outside), with τ_out half the grid's count along the ellipse's diameter that way. The shells shade the
-// cluster's side toward the hair's inside by it (shaders/lighting/own_cluster.glsl own_cluster_inner_tau): there the
-// light from outside crosses the whole cluster, whose fibres the records' coverage undercounts.
-vec3 inner_depth(LightingSample s, vec3 T, vec3 e1_own) {
-    vec3 out_dir;
-    float weight;
-    if (!hair_outside(s, T, e1_own, out_dir, weight)) return vec3(0.0);
-    float radius = own_cluster_exit(out_dir, T, e1_own, s.position.w, s.tangent.w);
-    vec3 from = s.position.xyz - radius * out_dir;
-    int n = max(int(ceil(4.0 * radius / u_step)), 2);  // half-voxel steps over the diameter
-    float h = 2.0 * radius / float(n);
-    MarchDirection md = march_direction(out_dir);
+// the outside's direction, with τ_out half the grid's count along the ellipse's diameter that way. The shells shade the
+// cluster's side toward the hair's inside by it (shaders/lighting/own_cluster.glsl own_cluster_tau): there the light
+// from outside crosses the whole cluster, whose fibres the records' coverage undercounts.
+vec3 inner_depth(LightingSample s, Outside o) {
+    if (!(o.weight > 0.0)) return vec3(0.0);
+    vec3 from = s.position.xyz - o.radius * o.dir;
+    int n = max(int(ceil(4.0 * o.radius / u_step)), 2);  // half-voxel steps over the diameter
+    float h = 2.0 * o.radius / float(n);
+    MarchDirection md = march_direction(o.dir);
     float sum = 0.0;
     for (int k = 0; k < n; ++k)
-        sum += projected_density(u_density, u_density_off, (from + out_dir * ((float(k) + 0.5) * h) - u_grid_min) / u_grid_extent, md);
-    return (weight * 0.5 * u_width * sum * h) * out_dir;
+        sum += projected_density(u_density, u_density_off, (from + o.dir * ((float(k) + 0.5) * h) - u_grid_min) / u_grid_extent, md);
+    return (o.weight * 0.5 * u_width * sum * h) * o.dir;
 }
 
 #if SHADOW_FILL
@@ -201,8 +200,11 @@ void main() {
     vec3 e2 = cross(l, e1);
     float direct = 0.0;
     float fibres = 0.0;
-    vec3 origin = s.position.xyz + outward_shift(s, T, e1_own);
-    if (j == 0) write_inner(i, u_inner != 0 ? inner_depth(s, T, e1_own) : vec3(0.0));
+    // The hair's outside, once for the rays' start and the sample's inner depth (the first light's invocation writes it).
+    bool inner = j == 0 && u_inner != 0;
+    Outside outside = u_outward > 0.0 || inner ? hair_outside(s, T, e1_own) : Outside(vec3(0.0), 0.0, 0.0);
+    vec3 origin = s.position.xyz + outward_shift(outside);
+    if (j == 0) write_inner(i, inner ? inner_depth(s, outside) : vec3(0.0));
     for (int r = 0; r < u_rays; ++r) {
         // Ray r carries the r-th of u_rays equal shares of the light's energy, from the centre out (srbf_lobe_cos),
         // turned by the golden angle from the one before.

@@ -175,6 +175,21 @@ gl::ShellSettings shadow_pass_settings() {
     return settings;
 }
 
+// The shadow pass's tests' scene: the shells of a style on a headless context, lit by narrow_light_along_minus_x and
+// drawn by front_camera into a bound target.
+struct ShadowScene {
+    explicit ShadowScene(const HairStyle& style)
+        : renderer(cook_shells(style, test_index(), glm::mat3(1.0f))), camera(lit_by(renderer, light)),
+          target(camera.width, camera.height, GL_RGBA16F, 1) {
+        target.bind();
+    }
+    std::unique_ptr<gl::Context> context = gl::Context::headless();  // first: the members below need it
+    gl::ShellRenderer renderer;
+    SrbfLight light = narrow_light_along_minus_x();
+    Camera camera;
+    gl::RenderTarget target;
+};
+
 // The fibres of radius 0.05 that the shadow pass's rays toward `light` (narrow_light_along_minus_x) meet from p, marched
 // on the CPU through `grid`, each ray starting where it leaves a round cluster of radius 1 along −y, plus two voxels:
 // the pass's lobe of 7 rays, each one seventh of the light's energy (srbf_lobe_cos), turned by the golden angle about
@@ -195,14 +210,11 @@ double cpu_fibres_met(const DensityGrid& grid, const SrbfLight& light, glm::vec3
 }
 
 TEST(ShellRenderer, ShadowsBetweenClustersFollowTheOpticalDepthOfTheOccluder) {
-    auto context = gl::Context::headless();
     const HairStyle style = two_cluster_style();
-    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
-    // A narrow light along −x: cluster c1 (x = 3) is lit through c0.
-    const SrbfLight light = narrow_light_along_minus_x();
-    const Camera camera = lit_by(renderer, light);
-    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
-    target.bind();
+    ShadowScene scene(style);  // a narrow light along −x: cluster c1 (x = 3) is lit through c0
+    gl::ShellRenderer& renderer = scene.renderer;
+    const SrbfLight& light = scene.light;
+    const Camera& camera = scene.camera;
     gl::ShellSettings settings = shadow_pass_settings();
     settings.shadow_outward = 0.0f;  // rays from the axes, as the CPU march below (the next test moves them out)
     // Rays start outside the own cluster (its share is each fragment's: shaders/lighting/own_cluster.glsl), so
@@ -339,13 +351,11 @@ void for_each_middle_sample(const gl::ShellRenderer& renderer, F f) {
 // above); and the rays must have moved: the rule finds each row's outside, and the count differs from the rays' from
 // the axis.
 TEST(ShellRenderer, ShadowRaysLeaveFromTheClustersOuterSide) {
-    auto context = gl::Context::headless();
     const HairStyle style = two_rows_style();
-    gl::ShellRenderer renderer(cook_shells(style, test_index(), glm::mat3(1.0f)));
-    const SrbfLight light = narrow_light_along_minus_x();
-    const Camera camera = lit_by(renderer, light);
-    gl::RenderTarget target(camera.width, camera.height, GL_RGBA16F, 1);
-    target.bind();
+    ShadowScene scene(style);
+    gl::ShellRenderer& renderer = scene.renderer;
+    const SrbfLight& light = scene.light;
+    const Camera& camera = scene.camera;
     gl::ShellSettings settings = shadow_pass_settings();
     settings.shadow_outward = 0.0f;
     renderer.draw(camera, settings);
