@@ -132,10 +132,12 @@ std::vector<Case> sweep_cases(const SweepOptions& o, const fs::path& dir) {
     return cases;
 }
 
-// What each set's rows add up to: the channel ratios in the band, their spread, and the picture's metrics.
+// What each set's rows add up to: the channel ratios in the band, their spread, and the picture's metrics. `level` is
+// the ratios' geometric mean and `in_band_level_removed` the ratios in the band once it is divided out: how many a
+// change of the whole image's brightness alone could bring in, so that a change's shape is told apart from its level.
 struct Summary {
-    int in_band = 0, ratios = 0;
-    double mean_abs_ln = 0, sd_ln = 0, lo = 0, hi = 0, blurred_mean = 0, blurred_worst = 0, flip_mean = 0;
+    int in_band = 0, ratios = 0, in_band_level_removed = 0;
+    double mean_abs_ln = 0, sd_ln = 0, level = 1, lo = 0, hi = 0, blurred_mean = 0, blurred_worst = 0, flip_mean = 0;
 };
 Summary summarize(const std::vector<Row>& rows) {
     Summary s;
@@ -159,8 +161,11 @@ Summary summarize(const std::vector<Row>& rows) {
     for (double v : ln) {
         s.mean_abs_ln += std::abs(v) / n;
         s.sd_ln += (v - mean) * (v - mean) / n;
+        const double shape = std::exp(v - mean);
+        if (shape >= kBandLow && shape <= kBandHigh) ++s.in_band_level_removed;
     }
     s.sd_ln = std::sqrt(s.sd_ln);
+    s.level = std::exp(mean);
     s.blurred_mean = blurred / double(rows.size());
     s.flip_mean = flip / double(rows.size());
     return s;
@@ -181,7 +186,8 @@ void add_bench_sweep(CLI::App& root) {
         "Each case prints the radiance ratio per channel (render / reference, the coverage-weighted mean hair radiance:\n"
         "`coif compare`'s), the blurred PSNR (σ 2 px) and the tone-mapped FLIP. Each set prints how many channel\n"
         "ratios lie in the issue's band [0.8, 1.25], the mean |ln ratio|, the standard deviation of ln ratio (what one\n"
-        "overall factor cannot remove), the blurred PSNR's mean and worst, and the mean FLIP. The references do not\n"
+        "overall factor cannot remove), the level (the ratios' geometric mean) and how many lie in the band with it\n"
+        "divided out, the blurred PSNR's mean and worst, and the mean FLIP. The references do not\n"
         "depend on the renderer's settings: --references keeps them in a folder and reuses them (named by a hash of\n"
         "the lights, the fibre's parameters, the view, the size, the samples and the strands drawn), so that a second\n"
         "run with other --params for the shells renders the shells alone. Both renderers run as subprocesses of this coif.\n"
@@ -316,7 +322,8 @@ void add_bench_sweep(CLI::App& root) {
             for (const auto& [set, set_rows] : by_set) {
                 const Summary s = summarize(set_rows);
                 doc["sets"][set] = {{"in_band", s.in_band}, {"ratios", s.ratios}, {"mean_abs_ln_ratio", s.mean_abs_ln},
-                                    {"sd_ln_ratio", s.sd_ln}, {"min_ratio", s.lo}, {"max_ratio", s.hi},
+                                    {"sd_ln_ratio", s.sd_ln}, {"level", s.level},
+                                    {"in_band_level_removed", s.in_band_level_removed}, {"min_ratio", s.lo}, {"max_ratio", s.hi},
                                     {"blurred_psnr_db_mean", s.blurred_mean}, {"blurred_psnr_db_worst", s.blurred_worst},
                                     {"flip_mean", s.flip_mean}};
             }
@@ -332,9 +339,10 @@ void add_bench_sweep(CLI::App& root) {
             if (!by_set.count(set)) continue;
             const Summary s = summarize(by_set[set]);
             std::printf("%s: %d of %d channel ratios in [%.2f, %.2f]; mean |ln ratio| %.3f, sd of ln ratio %.3f, range %.3f-%.3f; "
+                        "level (their geometric mean) %.3f, %d in the band with it divided out; "
                         "blurred PSNR mean %.2f dB, worst %.2f dB; mean FLIP %.3f\n",
-                        set, s.in_band, s.ratios, kBandLow, kBandHigh, s.mean_abs_ln, s.sd_ln, s.lo, s.hi, s.blurred_mean, s.blurred_worst,
-                        s.flip_mean);
+                        set, s.in_band, s.ratios, kBandLow, kBandHigh, s.mean_abs_ln, s.sd_ln, s.lo, s.hi, s.level,
+                        s.in_band_level_removed, s.blurred_mean, s.blurred_worst, s.flip_mean);
         }
         std::printf("%dx%d over black, references %d spp at depth %d%s%s%s.\n", o->width, o->height, o->spp, o->max_depth,
                     o->no_shadows ? " without shadows" : "", o->params.empty() ? "" : ", parameters ", o->params.c_str());

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <set>
 
 #include "models/absorption_map.h"
@@ -809,14 +810,22 @@ TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
     EXPECT_EQ(j["cases"][0]["name"], "light 0 0 1");
     EXPECT_EQ(count_refs(), 2);
     int in_band = 0;
+    std::vector<double> ln;
     for (const auto& c : j["cases"])
         for (const auto& v : c["radiance_ratio"]) {
             EXPECT_TRUE(std::isfinite(v.get<double>()) && v.get<double>() > 0);
             if (v.get<double>() >= 0.8 && v.get<double>() <= 1.25) ++in_band;
+            ln.push_back(std::log(v.get<double>()));
         }
     EXPECT_EQ(j["sets"]["lights"]["ratios"], 6);
     EXPECT_TRUE(fs::exists(dir / "keep" / "case1_render.exr"));  // --keep keeps the renders
     EXPECT_EQ(j["sets"]["lights"]["in_band"], in_band);
+    // The level is the ratios' geometric mean; with it divided out, the count of the shape alone.
+    const double mean_ln = std::accumulate(ln.begin(), ln.end(), 0.0) / double(ln.size());
+    int in_band_shape = 0;
+    for (double v : ln) in_band_shape += std::exp(v - mean_ln) >= 0.8 && std::exp(v - mean_ln) <= 1.25;
+    EXPECT_NEAR(j["sets"]["lights"]["level"].get<double>(), std::exp(mean_ln), 1e-12);
+    EXPECT_EQ(j["sets"]["lights"]["in_band_level_removed"], in_band_shape);
 
     // The same case by hand.
     const std::string size = " --width 96 --height 64 --background 0 0 0 --params '" + (dir / "full.json").string() + "'";
