@@ -603,7 +603,7 @@ std::vector<glm::vec2> ShellRenderer::read_shadows() const {
     return out;
 }
 
-std::vector<glm::vec3> ShellRenderer::read_inner_depths() const {
+std::vector<glm::vec3> ShellRenderer::read_inner_depths() const {  // the layout of shaders/gl/inner_depths.glsl
     const ShellGpu& g = *impl_->gpu;
     std::vector<glm::vec2> raw(2 * g.sample_count);
     if (raw.empty() || g.light_count == 0) return {};

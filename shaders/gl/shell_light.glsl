@@ -14,6 +14,7 @@
 // (T̃, n) per sample × light, then the own cluster's depth toward the hair's inside per sample (shell_shadow.comp
 // inner_depth, as two vec2)
 layout(std430, binding = 4) readonly buffer Shadows { vec2 shadows[]; };
+#include "shaders/gl/inner_depths.glsl"
 
 uniform int u_shadows;   // shadows between clusters on/off
 uniform int u_shadow_samples;  // the lighting samples: where the inner depths start in `shadows`
@@ -33,8 +34,7 @@ vec2 sample_shadow(int i, int j) { return u_shadows != 0 ? shadows[i * u_light_c
 // grid.
 vec3 sample_inner(int i) {
     if (u_shadows == 0 || u_own_inner <= 0.0) return vec3(0.0);
-    int at = u_shadow_samples * u_light_count + 2 * i;
-    return u_own_inner * vec3(shadows[at], shadows[at + 1].x);
+    return u_own_inner * inner_depth_read(inner_depth_at(u_shadow_samples, u_light_count, i));
 }
 
 // Light j's radiance at point p, shadowed by sh = (T̃, n); `lum_visible` adds lum(L_j) T̃_j and

@@ -72,15 +72,14 @@ uniform float u_body_opacity;    // optical depth per world unit through a body 
 uniform float u_body_max_depth;  // per ray
 #endif
 
+#include "shaders/gl/inner_depths.glsl"
+
 void write_inner(int i, vec3 v) {
-    int at = u_sample_count * u_light_count + 2 * i;
+    int at = inner_depth_at(u_sample_count, u_light_count, i);
     shadows[at] = v.xy;
     shadows[at + 1] = vec2(v.z, 0.0);
 }
-vec3 read_inner(int i) {
-    int at = u_sample_count * u_light_count + 2 * i;
-    return vec3(shadows[at], shadows[at + 1].x);
-}
+vec3 read_inner(int i) { return inner_depth_read(inner_depth_at(u_sample_count, u_light_count, i)); }
 
 const float GOLDEN_ANGLE = 2.39996322973;  // π (3 − √5): successive rays' turn about the light's axis
 
