@@ -391,7 +391,7 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     const float own_inner = s.own_cluster_shadow ? s.own_cluster_inner : 0.0f;
     const bool same = key.valid && shading::same_hair_parameters(key.hair, s.hair) && key.shadows == s.shadows &&
                       key.own_inner == own_inner && key.tangent_spread == s.tangent_spread && key.step == s.lighting_step && key.light_cull == s.light_cull &&
-                      key.key_lights == key_lights(gpu, s) && key.eye == eye &&
+                      key.key_lights == key_lights(gpu, s) && key.hot_spot == hot_spot_variant(s) && key.eye == eye &&
                       key.lights_stamp == gpu.lights_stamp &&
                       key.absorption_stamp == gpu.absorption_stamp && key.geometry_stamp == gpu.geometry_stamp &&
                       key.strides == strides;
@@ -399,6 +399,8 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     tables_.update(s.hair.fibre, s.hair.config);  // validates; rebuilds only on a change
     std::vector<std::string> defines = variant_defines(s);
     defines.push_back("LIGHTING_TEXELS " + std::to_string(kLightingTexels));
+    defines.push_back("LIGHTING_HOT_TEXEL " + std::to_string(kHotSpotTexel));
+    defines.push_back("SHELL_HOT_SPOT " + std::to_string(hot_spot_variant(s)));
     // Culling lights keeps each sample's estimates and its lights kept in arrays of the light count.
     const bool cull = s.light_cull > 0.0f && gpu.light_count > 0 && gpu.light_count <= kMaxCulledLights;
     if (cull) defines.push_back("SHELL_CULL_LIGHTS " + std::to_string(gpu.light_count));
@@ -425,8 +427,8 @@ bool LightingPass::run(const ShellGpu& gpu, const ShellSettings& s, const glm::v
     glBindImageTexture(0, gpu.lighting.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute((invocations + 31) / 32, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    key = {true, s.hair, s.shadows, own_inner, s.tangent_spread, s.lighting_step, s.light_cull, keys, eye, gpu.lights_stamp,
-           gpu.absorption_stamp, gpu.geometry_stamp, strides};
+    key = {true, s.hair, s.shadows, own_inner, s.tangent_spread, s.lighting_step, s.light_cull, keys, hot_spot_variant(s), eye,
+           gpu.lights_stamp, gpu.absorption_stamp, gpu.geometry_stamp, strides};
     return true;
 }
 
@@ -447,6 +449,9 @@ const Program& ShellsPass::shading_program(Compositing mode, const ShellSettings
                                      std::string("SHELL_TILT_PICK ") + (LightingPass::tilt_pick(s) ? "1" : "0"),
                                      std::string("SHELL_SECTOR_PICK ") + (s.sector_per_strip ? "1" : "0"),
                                      "LIGHTING_TEXELS " + std::to_string(kLightingTexels),
+                                     "LIGHTING_HOT_TEXEL " + std::to_string(kHotSpotTexel),
+                                     "SHELL_HOT_SPOT " + std::to_string(hot_spot_variant(s)),
+                                     std::string("SHELL_KEY_MEAN ") + (s.key_re_mean ? "1" : "0"),
                                      "SHELL_KEY_LIGHTS " + std::to_string(keys)};
     if (lighting == 2) {  // the per-fragment reference lights every fragment as the lighting pass lights a sample
         const std::vector<std::string> variant = LightingPass::variant_defines(s);
@@ -597,7 +602,15 @@ double ShellsPass::draw(const ShellGpu& gpu, const PreparedShells& shells, const
                     glBindTextureUnit(static_cast<GLuint>(kSceneDepthUnit + 1 + m), k.volume[static_cast<std::size_t>(m)].id());
                 }
                 glUniform1iv(prog.uniform("u_key_volume"), keys, units.data());
-                glUniformMatrix4fv(prog.uniform("u_key_frame"), keys, GL_FALSE, &k.frame[0][0][0]);
+                // Each volume read key_toward_light voxels of the fine grid toward its light, and every slab's points
+                // key_toward_camera voxels toward the camera (shaders/gl/key_light_volume.glsl).
+                std::array<glm::mat4, kMaxKeyLights> reading{};
+                for (int m = 0; m < keys; ++m) {
+                    const auto i = static_cast<std::size_t>(m);
+                    reading[i] = k.frame[i] * glm::translate(glm::mat4(1.0f), s.key_toward_light * gpu.key_voxel * glm::vec3(k.light[i]));
+                }
+                glUniformMatrix4fv(prog.uniform("u_key_frame"), keys, GL_FALSE, &reading[0][0][0]);
+                glUniform1f(prog.uniform("u_key_toward_camera"), s.key_toward_camera * gpu.key_voxel);
                 glUniform4fv(prog.uniform("u_key_light"), keys, &k.light[0].x);
                 glUniform1iv(prog.uniform("u_key_index"), keys, k.index.data());
             }

@@ -41,7 +41,10 @@ inline double wall_ms_since(std::chrono::steady_clock::time_point t0) {
 // fibre tangent's lum(C_0), then the fibres' forward loss 1 − ā_f, then each tangent's lum(C_1), lum(S_1), lum(C_2),
 // lum(S_2), then three per key light (its light unshadowed, its forward-scattered light, its forward loss)
 // (shaders/gl/shell_lighting.comp; the shaders' LIGHTING_TEXELS).
-inline constexpr int kLightingTexels = 14 + 3 * kMaxKeyLights;
+inline constexpr int kLightingTexels = 16 + 3 * kMaxKeyLights;
+// The lights' hot spot (ShellSettings::hot_spot): its RGB sum, then each fibre tangent's share in luminance (the
+// shaders' LIGHTING_HOT_TEXEL and the one after it).
+inline constexpr int kHotSpotTexel = 14 + 3 * kMaxKeyLights;
 // The most lights the lighting pass culls per sample (ShellSettings::light_cull): it keeps each light's estimate and
 // the lights kept in arrays of the light count, per sample; with more lights it lights every one.
 inline constexpr int kMaxCulledLights = 128;
@@ -181,6 +184,7 @@ struct LightingKey {
     int step = 1;
     float light_cull = 0.0f;
     int key_lights = 0;
+    int hot_spot = 0;  // hot_spot_variant
     glm::vec3 eye{0.0f};
     std::uint64_t lights_stamp = 0, absorption_stamp = 0, geometry_stamp = 0;
     std::vector<int> strides;  // per cluster: every strides-th of its rows lit (lit_strides: its level of detail's)

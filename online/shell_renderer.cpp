@@ -572,6 +572,17 @@ std::vector<std::array<glm::vec4, 5>> ShellRenderer::read_tangent_harmonics() co
     return out;
 }
 
+std::vector<glm::vec3> ShellRenderer::read_hot_spot() const {
+    const ShellGpu& g = *impl_->gpu;
+    const std::vector<float> tex = lighting_texels(g);
+    std::vector<glm::vec3> out(g.clusters * static_cast<std::size_t>(g.lighting_rows));
+    for (std::size_t c = 0; c < g.clusters; ++c)
+        for (int r = 0; r < g.lighting_rows; ++r)
+            for (int q = 0; q < 3; ++q)
+                out[c * g.lighting_rows + r][q] = lighting_float(tex, g, c, static_cast<std::size_t>(r), 4 * kHotSpotTexel + q);
+    return out;
+}
+
 std::vector<int> ShellRenderer::read_lights_lit() const {
     const ShellGpu& g = *impl_->gpu;
     const std::vector<float> tex = lighting_texels(g);

@@ -202,6 +202,9 @@ public:
     // Each fibre tangent's sums alone to the second harmonic, in luminance and on C_0's scale, per cluster and lighting
     // row (as read_lighting): lum(C_0), lum(C_1), lum(S_1), lum(C_2), lum(S_2), each a vec4 of the four tangents.
     std::vector<std::array<glm::vec4, 5>> read_tangent_harmonics() const;
+    // The lights' hot spot per cluster and lighting row (as read_lighting): Σ_j h_j w_j, which the other sums leave out
+    // (ShellSettings::hot_spot; zero without it).
+    std::vector<glm::vec3> read_hot_spot() const;
     // The lights that the lighting pass of the last draw lit at each sample it lit (ShellSettings::light_cull skips
     // some; ShellTimings::lighting_step and the clusters' levels of detail say which samples were lit, shell_passes.h
     // lit_samples): cluster by cluster, along each.

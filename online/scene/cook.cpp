@@ -1,6 +1,7 @@
 #include "online/scene/cook.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <chrono>
 #include <functional>
@@ -58,6 +59,17 @@ ShellSector shell_sector(const SectorMatch& mt, std::span<const float> mean_alph
 }
 
 }  // namespace
+
+float sector_thinning(const SectorMatch& match, double sector_density, const HrirDatabase& db) {
+    double record = 0, weights = 0;
+    for (int n = 0; n < match.k; ++n) {
+        record += match.weight[n] * db.features(match.id[n])[kMeanDensityColumn];
+        weights += match.weight[n];
+    }
+    record = weights > 0 ? record / weights : 0;
+    if (!(record > 1e-6) || !std::isfinite(sector_density)) return 1.0f;
+    return static_cast<float>(std::clamp(sector_density / record, 0.0, 1.0));  // a sector without fibres: none drawn
+}
 
 DatabaseAtlasStats database_atlas_stats(const HrirDatabase& db) {
     const AngleGrids& g = db.params().grids;
@@ -421,8 +433,13 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
         }
         const std::vector<SectorMatch> matches = satf.match_all(rows);
         std::vector<float> sector_alpha(per_proto, 0.0f);
-        for (std::size_t s = 0; s < per_proto; ++s)
-            m.sectors[first_sector + s] = shell_sector(matches[s], mean_alpha, &sector_alpha[s]);
+        for (std::size_t s = 0; s < per_proto; ++s) {
+            ShellSector& sector = m.sectors[first_sector + s];
+            sector = shell_sector(matches[s], mean_alpha, &sector_alpha[s]);
+            const float c = sector_thinning(matches[s], rows[s * kRawFeatureCount + kMeanDensityColumn], satf.database());
+            sector.shadow.z = c;
+            sector_alpha[s] = thinned_alpha(sector_alpha[s], c);  // of the mean α: Σ ᾱ's units (eq. 12)
+        }
         for (int i = 0; i <= L.s_t; ++i)
             for (int k = 0; k < L.s_u; ++k) {
                 float outer = 0.0f;  // Σ ᾱ of the layers outside layer j (004 eq. 12's χ(k))

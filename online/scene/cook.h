@@ -82,9 +82,16 @@ private:
     std::unique_ptr<State> state_;
 };
 
-// Stage 1 of the preparation (online/shells/prepared_shells.h): meshes, sector look-ups and shadow sums of every
-// prototype. `mean_alpha`: per database record. Sector ids are database record ids. Throws coif::Error if the
-// style has no clusters.
+// A sector's thinning of its records (ShellSector::shadow.z): its mean density ρ̄ over the match's records' (weighted as
+// the match weighs them; models/sector_features.h kMeanDensityColumn), at most 1, and 1 where the records have no
+// density. Sparse sectors match records of denser ones; the shells draw those thinned to the sector's own density
+// (shaders/gl/record_atlas.glsl thinned_alpha), which brings the hair's coverage and level to the strands' under single
+// lights (docs/quality.md, "The records thinned to their sectors' density").
+float sector_thinning(const SectorMatch& match, double sector_density, const HrirDatabase& db);
+
+// Stage 1 of the preparation (online/shells/prepared_shells.h): meshes, sector look-ups, their thinning
+// (sector_thinning) and the thinned shadow sums of every prototype. `mean_alpha`: per database record. Sector ids are
+// database record ids. Throws coif::Error if the style has no clusters.
 void prepare_prototypes(PreparedShells& shells, const HairStyle& style, const SatfIndex& satf,
                         std::span<const float> mean_alpha);
 // Stages 1 and 2.

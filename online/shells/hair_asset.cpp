@@ -448,6 +448,7 @@ CookedShells parse(std::span<const std::byte> data, const std::filesystem::path&
         for (int n = 0; n < gl::kMaxShellNeighbours; ++n)
             if (q.id[n] >= atlas_records) r.fail("SECT " + std::to_string(s), "a record id outside the atlas");
         if (!finite(q.weight) || !finite(q.shadow)) r.fail("SECT " + std::to_string(s), "not finite");
+        if (!(q.shadow.z >= 0.0f && q.shadow.z <= 1.0f)) r.fail("SECT " + std::to_string(s), "a thinning outside [0, 1]");
     }
     for (const std::uint32_t v : cluster_proto)
         if (v >= P) r.fail("CPRO", "a prototype index out of range");

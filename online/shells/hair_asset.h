@@ -3,13 +3,14 @@
 // (CookedShells), and its file, the `.coif` asset that `coif bake` writes and the runtime loads without the HRIR
 // database or FLANN. Cooking from a style is online/scene/cook.h.
 //
-// The `.coif` file, version 4 (3: LightingSample carries the cross-section's ellipse in its w components; 4: every asset
-// carries its grid's strands, which the key lights' fine grid is made from). Little-endian, IEEE-754 floats, every
+// The `.coif` file, version 5 (3: LightingSample carries the cross-section's ellipse in its w components; 4: every asset
+// carries its grid's strands, which the key lights' fine grid is made from; 5: each sector carries its records'
+// thinning in shadow.z, and its shadow sums are thinned). Little-endian, IEEE-754 floats, every
 // section 8-byte aligned:
 //
 //   byte 0   8  magic "COIFHAIR"
 //   byte 8   u32 format version (kHairAssetVersion)
-//   byte 12  u32 section count (20 in version 4)
+//   byte 12  u32 section count (20 in version 5)
 //   byte 16  u64 file size in bytes
 //   byte 24  u64 XXH3-64 checksum of bytes 32 … end (models/core/checksum.h)
 //   byte 32  the sections, in this order, each a u32 tag (4 ASCII characters), u32 element size in bytes, u64
@@ -32,6 +33,7 @@
 //     MESH 16        MeshRange (first, count, base_vertex, vertex_count), prototype-major, its layer count per prototype
 //     PROT  4        u32 per prototype: the style's cluster index it was made from
 //     SECT 48        ShellSector: per prototype, its layout's sector_count(): record ids (into the atlas), weights, shadow sums
+//                    and the records' thinning c ∈ [0, 1] (shadow.z)
 //     CPRO  4        u32 per cluster: its prototype
 //     INST 80        ShellInstance per cluster: model matrix, (first sector, cluster index, 0, 0)
 //     CCEN 12        vec3 per cluster: the axis's centre, world
@@ -56,7 +58,7 @@
 // re_norm, so that an asset draws bit-identically to its style cooked live (both draw a CookedShells).
 //
 // Compatibility: the version changes whenever anything above changes; a reader accepts exactly the versions it
-// was written for (this one: 3) and refuses any other with an error that names both, so an asset is re-baked
+// was written for (this one: 5) and refuses any other with an error that names both, so an asset is re-baked
 // with `coif bake` after such a change. Readers never guess at a layout.
 //
 // Reading validates everything a hostile file could use to make the renderer read out of bounds: sizes, counts
@@ -80,7 +82,7 @@
 
 namespace coif {
 
-inline constexpr std::uint32_t kHairAssetVersion = 4;
+inline constexpr std::uint32_t kHairAssetVersion = 5;
 
 // The strands voxelized into a cooked hair's shadow grid, in the shells' space (points and offsets only): an asset's
 // viewed in its mapping, so that loading does not copy them (they are read on the first draw with key lights, and on

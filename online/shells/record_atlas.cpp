@@ -24,6 +24,8 @@ glm::ivec2 tile_origin(std::size_t tile, int tiles_per_row, int hrir_length, int
 
 int atlas_value_index(int part, int channel) { return glsl::atlas_value_index(part, channel); }
 
+float thinned_alpha(float alpha, float c) { return glsl::thinned_alpha(alpha, c); }
+
 std::vector<std::uint8_t> record_tiles(int views, int hrir_length, const std::array<glm::vec4, kAtlasParts>& lo,
                                        const std::array<glm::vec4, kAtlasParts>& scale,
                                        const std::function<AtlasTexels(int view, int x)>& values) {

@@ -40,6 +40,9 @@ using AtlasTexels = std::array<float, 4 * kAtlasParts>;
 // The value a channel of a part holds (shaders/gl/record_atlas.glsl atlas_value_index): 0 α, 1..9 re's
 // coefficient index + 1, above that unused.
 int atlas_value_index(int part, int channel);
+// A record's coverage α thinned by c ≤ 1, 1 − (1 − α)^c (shaders/gl/record_atlas.glsl thinned_alpha, which the shells
+// apply per texel with ShellSector::shadow.z).
+float thinned_alpha(float alpha, float c);
 
 // Packs `records` records of views × hrir_length texels, `values(record, view, x)` giving each texel's channels,
 // quantised with the given ranges (`lo`, `scale`: those of every record the atlas may be asked to match, e.g. a

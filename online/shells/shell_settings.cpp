@@ -14,6 +14,8 @@ int own_cluster_variant(const ShellSettings& settings) {
     return settings.own_cluster_forward && settings.hair.multiple ? 2 : 1;
 }
 
+int hot_spot_variant(const ShellSettings& settings) { return own_cluster_variant(settings) != 0 ? settings.hot_spot : 0; }
+
 std::vector<ScatteringAov> scattering_aovs(const ShellSettings& settings) {
     ShellSettings over_black = settings;
     over_black.background = glm::vec3(0.0f);
@@ -220,6 +222,21 @@ ParamTable<ShellSettings> make_table() {
                              "volume per light made from a finer grid of the strands; 0: every light through the "
                              "lighting sums)",
                              [](auto& s) -> auto& { return s.key_lights; }));
+    t.push_back(bool_param<S>("key_re_mean",
+                              "the key lights light the records with re's mean (false: re at the light's azimuth about the "
+                              "cluster)",
+                              [](auto& s) -> auto& { return s.key_re_mean; }));
+    t.push_back(real_param<S>("key_toward_camera", "voxels of the key lights' grid", 0.0, 8.0,
+                              "each layer's points where a key light's shadow is read move this far toward the camera (0: "
+                              "the layer's slab itself)",
+                              [](auto& s) -> auto& { return s.key_toward_camera; }));
+    t.push_back(real_param<S>("key_toward_light", "voxels of the key lights' grid", 0.0, 8.0,
+                              "a key light's shadow is read this far toward the light from each of those points",
+                              [](auto& s) -> auto& { return s.key_toward_light; }));
+    t.push_back(int_param<S>("hot_spot", 0, 8,
+                             "with own_cluster_shadow, the share max(0, l.v)^hot_spot of each light but the key lights (v "
+                             "toward the camera) is lit past the own cluster's shadow, with re's mean (0: none)",
+                             [](auto& s) -> auto& { return s.hot_spot; }));
     return t;
 }
 

@@ -48,7 +48,9 @@ struct ShellSettings {
     // density gradient, across the axis), not at the axis (0). At the crown, a light that grazes the hair crosses far
     // fewer fibres on the way to the outermost ones than on the way to the axis (docs/quality.md, "The shadows on the
     // cluster's outer side"; shaders/gl/shell_shadow.comp).
-    float shadow_outward = 0.5f;
+    // 1 by the sweeps with the records' thinning and the lights' hot spot (docs/quality.md, "The records thinned to their
+    // sectors' density, and the lights' hot spot").
+    float shadow_outward = 1.0f;
     // With own_cluster_shadow and shadows, the own cluster's side toward the hair's inside is shaded through the whole
     // cluster as the shadow grid counts it: its optical depth per radius is at least this share of the grid's fibres
     // across the cluster toward the hair's outside (shaders/gl/shell_shadow.comp inner_depth, weighed by how clearly the
@@ -128,6 +130,12 @@ struct ShellSettings {
     // light, and so do more than 128 lights (online/shell_passes.h kMaxCulledLights). docs/renderer.md ("Lights culled
     // per lighting sample") measures the cost and the error.
     float light_cull = 0.05f;
+    // With own_cluster_shadow, each light but the key lights is split by h = max(0, l · v)^hot_spot (v toward the camera):
+    // the share h is lit past the own cluster's factor with re's mean, the rest through it as before. Where a light
+    // stands behind the camera, the fibres the camera sees through a cluster's gaps are lit through the same gaps, which
+    // eq. 12's factor takes as independent of the view (shaders/gl/shell_lighting.comp SHELL_HOT_SPOT). 0: no split.
+    // 2 by the sweeps (docs/quality.md, "The records thinned to their sectors' density, and the lights' hot spot").
+    int hot_spot = 2;
     // The brightest lights (by |lum(L_j)| times their solid angle), up to 4, lit with their own shadow: the fibres met
     // from each vertex of the shells toward the light (from each fragment with lighting_per_fragment), read from a
     // volume aligned with the light and made from a finer grid of the strands (online/shell_passes.h KeyLightPass),
@@ -137,6 +145,17 @@ struct ShellSettings {
     // light's soft shadow is drawn as a narrow one's.
     // docs/quality.md ("Key lights") measures the image and the cost. A preset's choice: 1 but at `low`.
     int key_lights = 1;
+    // The key lights light the records with re's mean a0 (false: re at the light's in-plane azimuth, whose dependence is
+    // the database tracer's Phong shading: docs/quality.md, "re's dependence on the light is the tracer's Phong"): the
+    // single-light sweep's 35 of 78 in the band with re's azimuth, 68 with its mean.
+    bool key_re_mean = true;
+    // Where a key light's shadow is read: each layer's slab points moved this many voxels of the key lights' fine grid
+    // toward the camera (the side of the slab whose fibres the camera sees) and the volume read this many voxels toward
+    // the light (the fibres a point's own slab puts between it and the light are its own cluster's, which the records'
+    // coverage already shades). Both 0: at the slab's points. 1.3 and 0.65 by the sweeps (docs/quality.md, "The shadows
+    // on the cluster's outer side" and "The records thinned to their sectors' density, and the lights' hot spot").
+    float key_toward_camera = 1.3f;
+    float key_toward_light = 0.65f;
     // The k-buffer compositing's slots per pixel (Compositing::kbuffer, online/weighted_blend.h): its k nearest fragments
     // are composited exactly, 1..kMaxKBufferSlots. docs/renderer.md ("Decision 4") measures the cost and the error.
     int kbuffer_slots = 8;
@@ -217,6 +236,9 @@ std::vector<ScatteringAov> scattering_aovs(const ShellSettings& settings);
 // (own_cluster_shadow false), 2 with the light that its fibres scatter forward (own_cluster_forward, with multiple
 // scattering on), 1 the unscattered light only. `coif reference --max-depth 1` has no forward-scattered light either.
 int own_cluster_variant(const ShellSettings& settings);
+// The lights' hot spot as the shells take it (ShellSettings::hot_spot; SHELL_HOT_SPOT): its exponent with the own
+// cluster's shadow, which it is lit past, else 0.
+int hot_spot_variant(const ShellSettings& settings);
 
 // The parameters file: one JSON object, every key optional, read through shell_settings_table(): the hair's
 // keys (shading::hair_parameter_table(), shaders/hair_parameters.h: eta, sigma_a, alpha_R_deg, …; degrees

@@ -5,7 +5,11 @@
 #define COIF_SHADERS_GL_KEY_LIGHT_VOLUME_GLSL
 
 uniform sampler3D u_key_volume[SHELL_KEY_LIGHTS];  // the fibres met toward each key light (KeyLightPass)
-uniform mat4 u_key_frame[SHELL_KEY_LIGHTS];        // shells' space → the volume's texture coordinates
+// Shells' space → the volume's texture coordinates, each point first moved ShellSettings::key_toward_light voxels toward
+// the light (online/shell_passes.cpp key_reading_frame).
+uniform mat4 u_key_frame[SHELL_KEY_LIGHTS];
+uniform vec4 u_key_light[SHELL_KEY_LIGHTS];        // unit direction toward the light, λ
+uniform float u_key_toward_camera;                 // ShellSettings::key_toward_camera, in shells' units
 
 // The fibres met from p toward key light m; none with ShellSettings::debug 6, which shades the key lights unshadowed (the
 // rest of the image as in 0), so that their shadow's share of the light can be taken apart from what it shadows.
@@ -30,17 +34,19 @@ vec3 key_light_weight_at(int m, vec3 p, vec3 direct, vec3 forward, vec3 loss) {
 // ρ = rho_p: the mesh's surface, which a folded inner layer's is not): the Gauss-Legendre nodes in ρ, each weighed by
 // its ρ, since a slab's fibres per unit of ρ grow with ρ. At the surface alone, the fibres under it were lit as if
 // nothing of their own layer lay toward the light (docs/quality.md, "A key light's shadow over the layer's slab").
+// Both points then move u_key_toward_camera along `to_eye` (unit, toward the camera): the fibres a layer shows the camera
+// are its slab's side toward it (ShellSettings::key_toward_camera).
 struct KeySlab {
     vec3 p0, p1;   // the two points
     float w1;      // the outer point's weight; the inner one's is 1 - w1
 };
-KeySlab key_slab(vec3 p, vec3 axis, float rho_p, float spacing, float rho) {
+KeySlab key_slab(vec3 p, vec3 axis, float rho_p, float spacing, float rho, vec3 to_eye) {
     const float g = 0.28867513;  // 1 / (2 sqrt 3): the nodes lie at the slab's middle -/+ g of its depth
     float rho_inner = max(rho - spacing, 0.0);
     float r0 = mix(rho_inner, rho, 0.5 - g), r1 = mix(rho_inner, rho, 0.5 + g);
     KeySlab s;
-    s.p0 = axis + (r0 / rho_p) * (p - axis);
-    s.p1 = axis + (r1 / rho_p) * (p - axis);
+    s.p0 = axis + (r0 / rho_p) * (p - axis) + u_key_toward_camera * to_eye;
+    s.p1 = axis + (r1 / rho_p) * (p - axis) + u_key_toward_camera * to_eye;
     s.w1 = r1 / (r0 + r1);
     return s;
 }

@@ -31,4 +31,11 @@ COIF_FN vec2 atlas_tile_origin(uint tile, int tiles_per_row, int hrir_length, in
 // What channel `channel` (0..3) of part `part` holds: 0 = α, 1..9 = re coefficient index + 1, > 9 unused.
 COIF_FN int atlas_value_index(int part, int channel) { return part * 4 + channel; }
 
+// A record of a denser sector thinned to its own sector's density (online/scene/cook.cpp sector_thinning): the look-up
+// returns the nearest record, and for sparse sectors that is one of a denser sector (docs/quality.md, "The records'
+// density against their sectors'"). Its fibres' coverage α becomes 1 − (1 − α)^c, c ≤ 1 the sector's density over the
+// record's (c of the record's layers of fibres kept, each layer covering as the record's do), and re, which is the
+// record's scattered light per unit of α, is scaled with α.
+COIF_FN float thinned_alpha(float alpha, float c) { return 1.0 - pow(max(1.0 - alpha, 1e-6), c); }
+
 #endif

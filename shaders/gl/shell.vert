@@ -44,11 +44,18 @@ out vec4 v_L13;
 #if defined(SHELL_OWN) && SHELL_OWN == 2
 out vec3 v_L9;   // texel 9: the fibres' forward loss 1 − ā_f
 #endif
+#if defined(SHELL_HOT_SPOT) && SHELL_HOT_SPOT > 0
+out vec3 v_hot;  // texel LIGHTING_HOT_TEXEL: the lights' hot spot
+#if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
+out vec4 v_hot_tangent;  // the next texel: each fibre tangent's share of it in luminance
+#endif
+#endif
 #if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
 #include "shaders/gl/key_light_volume.glsl"
 #include "shaders/gl/lighting_samples.glsl"  // the clusters' axes (key_slab)
 uniform float u_layer_rho;  // this layer's slab, in cluster radii: the mesh's surface and the next layer in's
 uniform float u_inner_rho;
+uniform vec3 u_eye;
 out vec3 v_key_weight[SHELL_KEY_LIGHTS];  // each key light's weight over the vertex's slab (key_light_weight)
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
 out vec3 v_key_weight_inner[SHELL_KEY_LIGHTS];  // the folded inner layer's, over its own slab on the same line
@@ -97,13 +104,20 @@ void main() {
 #if defined(SHELL_OWN) && SHELL_OWN == 2
     v_L9 = lighting_fetch(a_texcoord.y, inst.info.y, 9).xyz;
 #endif
+#if defined(SHELL_HOT_SPOT) && SHELL_HOT_SPOT > 0
+    v_hot = lighting_fetch(a_texcoord.y, inst.info.y, LIGHTING_HOT_TEXEL).xyz;
+#if defined(SHELL_TILT_PICK) && SHELL_TILT_PICK == 1
+    v_hot_tangent = lighting_fetch(a_texcoord.y, inst.info.y, LIGHTING_HOT_TEXEL + 1);
+#endif
+#endif
 #if defined(SHELL_KEY_LIGHTS) && SHELL_KEY_LIGHTS > 0
     {
         vec3 axis = sample_axis_point(a_texcoord.y, inst.info.y, u_lighting_rows);
         float spacing = u_layer_rho - u_inner_rho;
-        KeySlab slab = key_slab(world.xyz, axis, u_layer_rho, spacing, u_layer_rho);
+        vec3 to_eye = normalize(u_eye - world.xyz);
+        KeySlab slab = key_slab(world.xyz, axis, u_layer_rho, spacing, u_layer_rho, to_eye);
 #if defined(SHELL_FOLD) && SHELL_FOLD == 1
-        KeySlab inner = key_slab(world.xyz, axis, u_layer_rho, spacing, u_inner_rho);
+        KeySlab inner = key_slab(world.xyz, axis, u_layer_rho, spacing, u_inner_rho, to_eye);
 #endif
         for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
             vec3 direct = lighting_fetch(a_texcoord.y, inst.info.y, 14 + 3 * m).rgb;

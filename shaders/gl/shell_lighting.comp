@@ -22,13 +22,22 @@
 // one tangent (shell_shade.glsl SHELL_TILT_PICK), with the share of the light that reaches that tangent at the
 // records' light azimuths. Texel 9 holds the fibres' forward loss 1 − ā_f per channel (ā_f: zinke_forward, at the θd whose
 // 1 / cos is the 29th float, the lights' mean stretch), for the own cluster's forward-scattered light (shell_shade.glsl
-// SHELL_OWN 2). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all.
+// SHELL_OWN 2). LIGHTING_TEXELS (online/shell_passes.h kLightingTexels) texels per sample in all, the last two of them
+// the hot spot's (LIGHTING_HOT_TEXEL, below).
 //
 // With SHELL_KEY_LIGHTS K (ShellSettings::key_lights) the K lights u_key_index are left out of every sum but texels 8,
 // 10..13 (and the shadow AOV), and texels 14 + 3m .. 16 + 3m hold key light m's weight for the shells to shadow per
 // fragment (shell_shade.glsl): its light unshadowed (single scattering and the local multiple scattering, T̃ = 1), its
 // forward-scattered light per unit of its share max(T_f − T̃, 0) (shell_light_forward, at the axis's n), and the fibres'
 // forward loss 1 − ā_f at its angle, each the mean over the fibre tangents.
+//
+// With SHELL_HOT_SPOT p > 0 (ShellSettings::hot_spot, with the own cluster's shadow) each light j but the key lights is
+// split by h_j = max(0, l_j · v)^p, v toward the camera: h_j w_j is summed apart into texel LIGHTING_HOT_TEXEL (and
+// each fibre tangent's in luminance, on its scale as texel 8, into the next texel) and left out of every other sum (the
+// own cluster's mean stretch, 29th float, and texels 8, 10..13 included). The shells light that share with re's
+// mean past the own cluster's factor (shell_shade.glsl): where a light stands behind the camera, the fibres the camera
+// sees through the cluster's gaps are lit through the same gaps (docs/quality.md, "The records thinned to their
+// sectors' density, and the lights' hot spot").
 //
 // With SHELL_CULL_LIGHTS N (the light count, up to kMaxCulledLights; ShellSettings::light_cull > 0) each sample lights only the lights that
 // carry its light: light j's share is estimated as b_j = |lum(L_j)| ∫G_j (T̃_j + d_f max_c(T_f − T̃_j)), its power times
@@ -50,6 +59,10 @@ bool is_key(int j) {
 }
 #else
 bool is_key(int j) { return false; }
+#endif
+
+#ifndef SHELL_HOT_SPOT
+#define SHELL_HOT_SPOT 0
 #endif
 
 #include "shaders/gl/lighting_samples.glsl"
@@ -148,6 +161,8 @@ void main() {
         key_loss[m] = vec3(0.0);
     }
 #endif
+    vec3 hot = vec3(0.0);          // Σ h_j w_j (texel LIGHTING_HOT_TEXEL)
+    vec4 hot_tangent = vec4(0.0);  // lum of each tangent's alone (the texel after it)
     vec4 tangent_lum = vec4(0.0);  // lum(C_0) of each tangent alone (texel 8)
     vec4 tangent_c1 = vec4(0.0);   // lum(C_1), lum(S_1), lum(C_2), lum(S_2) of each tangent alone (texels 10..13)
     vec4 tangent_s1 = vec4(0.0);
@@ -155,6 +170,7 @@ void main() {
     vec4 tangent_s2 = vec4(0.0);
     for (int q = 0; q < SHELL_TANGENTS; ++q) {
         vec3 C0_before = C[0];
+        vec3 hot_before = hot;
         vec3 Tq;
         vec3 rq;
         fibre_tangent_of(T, r0, tm, ta, tb, q, SHELL_TANGENTS, Tq, rq);
@@ -169,6 +185,13 @@ void main() {
             vec3 wj = shell_light_weight(p, j, sample_shadow(i, j), visible, total) * (1.0 / float(SHELL_TANGENTS));
 #endif
             vec3 l = lights[j].direction_lambda.xyz;
+#if SHELL_HOT_SPOT > 0
+            {
+                float h = pow(max(dot(normalize(l), V), 0.0), float(SHELL_HOT_SPOT));
+                hot += h * wj;
+                wj *= 1.0 - h;
+            }
+#endif
             float psi = sector_azimuth(l, T, r0);
             float lp = shell_light_spread(j, T);
             C[0] += wj;
@@ -193,6 +216,7 @@ void main() {
             }
         }
         tangent_lum[q] = float(SHELL_TANGENTS) * luminance(C[0] - C0_before);
+        hot_tangent[q] = float(SHELL_TANGENTS) * luminance(hot - hot_before);
 #if SHELL_KEY_LIGHTS > 0
         for (int m = 0; m < SHELL_KEY_LIGHTS; ++m) {
             int j = u_key_index[m];
@@ -228,6 +252,7 @@ void main() {
         tangent_s1 = vec4(tangent_s1.x);
         tangent_c2 = vec4(tangent_c2.x);
         tangent_s2 = vec4(tangent_s2.x);
+        hot_tangent = vec4(hot_tangent.x);
     }
     float v[32];
     v[0] = C[0].x; v[1] = C[0].y; v[2] = C[0].z;
@@ -263,4 +288,6 @@ void main() {
 #endif
     vec3 a_f = fetch_ms_forward(acos(clamp(1.0 / v[28], 0.0, 1.0)), hp.sigma_a).rgb;
     imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + 9), vec4(vec3(1.0) - a_f, 0.0));
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + LIGHTING_HOT_TEXEL), vec4(hot, 0.0));
+    imageStore(u_out, ivec2(used, cluster * LIGHTING_TEXELS + LIGHTING_HOT_TEXEL + 1), hot_tangent);
 }

@@ -83,9 +83,14 @@
 #ifndef SHELL_KEY_LIGHTS
 #define SHELL_KEY_LIGHTS 0
 #endif
+#ifndef SHELL_HOT_SPOT
+#define SHELL_HOT_SPOT 0
+#endif
+#ifndef SHELL_KEY_MEAN
+#define SHELL_KEY_MEAN 0
+#endif
 #if SHELL_KEY_LIGHTS > 0
-#include "shaders/gl/key_light_volume.glsl"
-uniform vec4 u_key_light[SHELL_KEY_LIGHTS];        // unit direction toward the light, λ
+#include "shaders/gl/key_light_volume.glsl"  // u_key_light
 uniform int u_key_index[SHELL_KEY_LIGHTS];         // in the lights buffer
 #endif
 #if SHELL_OWN != 0
@@ -122,6 +127,12 @@ centroid in vec4 v_L13;
 #if SHELL_OWN == 2
 centroid in vec3 v_L9;
 #endif
+#if SHELL_HOT_SPOT > 0
+centroid in vec3 v_hot;  // the lights' hot spot (shell_lighting.comp, texel LIGHTING_HOT_TEXEL)
+#if SHELL_TILT_PICK == 1
+centroid in vec4 v_hot_tangent;  // each fibre tangent's share of it in luminance (the next texel)
+#endif
+#endif
 #if SHELL_KEY_LIGHTS > 0
 centroid in vec3 v_key_weight[SHELL_KEY_LIGHTS];
 #if SHELL_FOLD == 1
@@ -133,7 +144,8 @@ centroid in vec3 v_key_weight_inner[SHELL_KEY_LIGHTS];  // the folded inner laye
 struct ShellSector {
     uvec4 id;      // nearest records, best first
     vec4 weight;   // their weights (renormalised here over the first u_neighbours)
-    vec4 shadow;   // x: Σ of the mean α of the outer sectors at the same (i, k); y: of every layer there
+    vec4 shadow;   // x: Σ of the mean α of the outer sectors at the same (i, k); y: of every layer there; z: the
+                   // records' thinning c (record_atlas.glsl thinned_alpha)
 };
 layout(std430, binding = 1) readonly buffer Sectors { ShellSector sectors[]; };
 
@@ -211,8 +223,9 @@ vec4 atlas_fetch(uint tile, vec2 p) {
     return textureLod(u_records, (origin + p) * u_atlas_inv_size, 0.0);
 }
 
-// α and the 9 re coefficients of one sector at atlas position p (its SHELL_NEIGHBOURS best records), as three vec4:
-// t0 = (α, a0, a1, b1), t1 = (a2, b2, a3, b3), t2 = (a4, b4, 0, 0). No arrays: llvmpipe spills them.
+// α and the 9 re coefficients of one sector at atlas position p (its SHELL_NEIGHBOURS best records, thinned to the
+// sector's density), as three vec4: t0 = (α, a0, a1, b1), t1 = (a2, b2, a3, b3), t2 = (a4, b4, 0, 0). No arrays:
+// llvmpipe spills them.
 void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
     ShellSector s = sectors[sector];
     t0 = vec4(0.0);
@@ -245,6 +258,13 @@ void sector_values(uint sector, vec2 p, out vec4 t0, out vec4 t1, out vec4 t2) {
 #if SHELL_FOURIER >= 4
     t2 = u_atlas_lo[2] + u_atlas_scale[2] * (t2 * inv);
 #endif
+    // Thinned to the sector's own density: α′ = 1 − (1 − α)^c, and re, the light per unit of α, with it.
+    float a = clamp(t0.x, 0.0, 1.0);
+    float thinned = thinned_alpha(a, s.shadow.z);
+    float k = a > 1e-6 ? thinned / a : s.shadow.z;
+    t0 = vec4(thinned, k * t0.yzw);
+    t1 *= k;
+    t2 *= k;
 }
 
 // re at a light's in-plane azimuth θl from its harmonics (c01 = (a0, a1, b1), c23 = (a2, b2, a3, b3), c4 = (a4, b4)),
@@ -342,7 +362,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #if SHELL_KEY_LIGHTS > 0 && (SHELL_LIGHTING != 1 || SHELL_DEBUG == 5)
     // The key lights' points of this layer's slab (key_slab), on the line through the fragment, which lies on u_layer_rho.
     KeySlab slab = key_slab(position, sample_axis_point(texcoord.y, info.y, u_lighting_rows), u_layer_rho,
-                            u_layer_rho - u_inner_rho, rho);
+                            u_layer_rho - u_inner_rho, rho, V);
 #endif
 #if SHELL_DEBUG == 5 && SHELL_KEY_LIGHTS > 0
     return vec4(vec3(key_transmittance(0, slab) * alpha), alpha);
@@ -449,7 +469,16 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #else
         float re = re_at(t0.yzw, t1, t2.xy, th, d1, d2, d3, d4);
 #endif
-        lit += wj * re;
+        // The share of this light lit with re's mean past the own cluster's factor: the hot spot's (ShellSettings::hot_spot;
+        // the lighting pass splits each light but the key lights alike), a key light's whole with key_re_mean.
+        float mean_share = 0.0;
+#if SHELL_HOT_SPOT > 0
+        mean_share = pow(max(dot(normalize(lights[j].direction_lambda.xyz), V), 0.0), float(SHELL_HOT_SPOT));
+#endif
+#if SHELL_KEY_LIGHTS > 0
+        if (key >= 0) mean_share = float(SHELL_KEY_MEAN);
+#endif
+        lit += wj * (re * (1.0 - mean_share) + t0.y * mean_share);
         C0 += wj;
     }
 #undef SHELL_LIGHT_WEIGHT
@@ -478,7 +507,17 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 L7 = lighting_fetch(texcoord.y, info.y, 7).xzw;
 #endif
     vec3 C0 = L0.xyz;
-#if SHELL_DEBUG == 3
+#if SHELL_HOT_SPOT > 0
+    // The lights' hot spot (ShellSettings::hot_spot), which C0 and the harmonics leave out.
+#if SHELL_LIGHTING == 1
+    vec3 hot = v_hot;
+#else
+    vec3 hot = lighting_fetch(texcoord.y, info.y, LIGHTING_HOT_TEXEL).xyz;
+#endif
+#endif
+#if SHELL_DEBUG == 3 && SHELL_HOT_SPOT > 0
+    return vec4((C0 + hot) * alpha * tau, alpha);
+#elif SHELL_DEBUG == 3
     return vec4(C0 * alpha * tau, alpha);
 #elif SHELL_DEBUG == 4
     return vec4(vec3(L6.w * tau * alpha), alpha);
@@ -501,6 +540,9 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
     vec3 raw01 = t0.yzw;  // re's own harmonics, for the key lights (no own cluster's factor)
     vec4 raw23 = t1;
     vec2 raw4 = t2.xy;
+#endif
+#if SHELL_HOT_SPOT > 0
+    float re_mean = t0.y;  // re's mean, for the lights' hot spot (no own cluster's factor)
 #endif
 #if SHELL_OWN != 0
     // The own cluster's depth per radius at this fragment, stretched by the lights' mean angle to the axis: at least the
@@ -572,10 +614,14 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
                                   lighting_fetch(texcoord.y, info.y, 15 + 3 * m).rgb,
                                   lighting_fetch(texcoord.y, info.y, 16 + 3 * m).rgb);
 #endif
+#if SHELL_KEY_MEAN == 1
+        sum += w * raw01.x;  // re's mean (ShellSettings::key_re_mean)
+#else
         vec3 l = u_key_light[m].xyz;
         float d1, d2, d3, d4;
         light_dampings(l, u_key_light[m].w, T, d1, d2, d3, d4);
         sum += w * re_at(raw01, raw23, raw4, sector_azimuth(l, T, r), d1, d2, d3, d4);
+#endif
     }
 #endif
 #if SHELL_TILT_PICK == 1
@@ -607,7 +653,21 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
                       : c0_mean > 1e-20                              ? max(L8[q], 0.0) / c0_mean
                                                                      : 1.0;
         sum *= share;
+#if SHELL_HOT_SPOT > 0
+        // The hot spot's own share of the strip's tangent: its light is re's mean's alone, so C_0's share.
+#if SHELL_LIGHTING == 1
+        vec4 hot_tangent = v_hot_tangent;
+#else
+        vec4 hot_tangent = lighting_fetch(texcoord.y, info.y, LIGHTING_HOT_TEXEL + 1);
+#endif
+        float hot_mean = 0.25 * (hot_tangent.x + hot_tangent.y + hot_tangent.z + hot_tangent.w);
+        hot *= hot_mean > 1e-20 ? max(hot_tangent[q], 0.0) / hot_mean : 1.0;
+#endif
     }
+#endif
+#if SHELL_HOT_SPOT > 0
+    // The hot spot: lit with re's mean past the own cluster's factor.
+    sum += re_mean * hot;
 #endif
     return vec4(max(sum, vec3(0.0)) * u_re_scale * tau, alpha);
 #endif

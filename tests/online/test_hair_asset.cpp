@@ -231,7 +231,7 @@ TEST(HairAsset, RefusesTruncatedCorruptAndOtherVersionFiles) {
     EXPECT_NE(refusal(flipped).find("checksum"), std::string::npos) << refusal(flipped);
     std::vector<std::byte> other = good;
     other[8] = std::byte{1};
-    EXPECT_NE(refusal(other).find("version 1 (this coif reads version 4"), std::string::npos) << refusal(other);
+    EXPECT_NE(refusal(other).find("version 1 (this coif reads version 5"), std::string::npos) << refusal(other);
     std::vector<std::byte> magic = good;
     magic[3] = std::byte{'X'};
     EXPECT_NE(refusal(magic).find("bad magic"), std::string::npos);

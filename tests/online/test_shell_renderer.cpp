@@ -87,9 +87,12 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
     renderer.draw(camera, settings);
     const std::vector<float> lit = renderer.read_lighting();
     const std::vector<std::array<glm::vec4, 5>> tangent_sums = renderer.read_tangent_harmonics();
+    const std::vector<glm::vec3> hot_sums = renderer.read_hot_spot();
     const shading::LightingEvaluator ev(settings.hair.fibre, settings.hair.config);
     const int tangents = spread != 0.0f ? 4 : 1;
     double worst = 0;
+    double worst_hot = 0;  // the hot spot's share h w (ShellSettings::hot_spot), which the sums leave out
+    float h_max = 0.0f;
     double worst_tangent = 0;  // each tangent's sums alone in luminance (texels 8, 10..13), on C_0's scale
     for (int r = 0; r < renderer.lighting_rows(); ++r) {
         const std::vector<glm::vec3> s = renderer.lighting_sample(static_cast<std::size_t>(r));
@@ -97,6 +100,9 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
         const glm::vec3 T = glm::normalize(s[1]);
         const glm::vec3 r0 = glm::normalize(s[2] - glm::dot(s[2], T) * T);
         const LightingSample& sample = renderer.prepared().samples[static_cast<std::size_t>(r)];
+        // The light's hot-spot share, h = max(0, l · v)², lit apart (shell_lighting.comp SHELL_HOT_SPOT).
+        const float h = std::pow(std::max(glm::dot(light.omega, view), 0.0f), static_cast<float>(settings.hot_spot));
+        h_max = std::max(h_max, h);
         glm::vec3 m(sample.tilt_mean), a(sample.tilt_a), b(sample.tilt_b);
         if (spread >= 0.0f) {
             m = glm::vec3(0.0f);
@@ -115,7 +121,7 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
             const glm::vec3 one =
                 ev.shade(shading::FibreFrame::from_tangent(Tq, rq), view, std::span(&light, 1), {}, multiple).total();
             if (q < tangents) want += one / float(tangents);
-            const float lum = glsl::luminance(one);
+            const float lum = (1.0f - h) * glsl::luminance(one);
             lum_mean += lum / 4.0f;
             const float want_q[5] = {lum, lum * d1 * std::cos(psi), lum * d1 * std::sin(psi), lum * d2 * std::cos(2.0f * psi),
                                      lum * d2 * std::sin(2.0f * psi)};
@@ -126,14 +132,20 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
         const glm::vec4 tl = got_q[0];
         EXPECT_NEAR((tl.x + tl.y + tl.z + tl.w) / 4.0f, lum_mean, 0.01f * std::max(lum_mean, 1e-3f)) << "row " << r;
         const glm::vec3 got(lit[r * 27 + 0], lit[r * 27 + 1], lit[r * 27 + 2]);
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(got[c]) - want[c]) / std::max(1e-3, double(want[c])));
+        const glm::vec3 hot = hot_sums[static_cast<std::size_t>(r)];
+        for (int c = 0; c < 3; ++c) {
+            worst = std::max(worst, std::abs(double(got[c]) - (1.0 - h) * want[c]) / std::max(1e-3, double(want[c])));
+            worst_hot = std::max(worst_hot, std::abs(double(hot[c]) - h * want[c]) / std::max(1e-3, double(want[c])));
+        }
         if (r == 0) std::printf("row 0: GPU %g %g %g, CPU %g %g %g\n", got.x, got.y, got.z, want.x, want.y, want.z);
     }
-    std::printf("spread %.1f, multiple %d: worst relative difference GPU lighting pass vs CPU evaluator: %.3g\n", spread,
-                multiple, worst);
+    std::printf("spread %.1f, multiple %d: worst relative difference GPU lighting pass vs CPU evaluator: %.3g (the hot "
+                "spot's, h up to %.2f: %.3g)\n", spread, multiple, worst, h_max, worst_hot);
     // Same GLSL on both sides; the GPU runs float transcendental functions of llvmpipe and bilinear
     // texture fetches at GL's 8-bit sub-texel precision, so allow 1 %.
     EXPECT_LT(worst, 0.01) << "spread " << spread << ", multiple scattering " << multiple;
+    EXPECT_LT(worst_hot, 0.01) << "spread " << spread << ", multiple scattering " << multiple;
+    EXPECT_GT(h_max, 0.1f);  // the light stands on the camera's side: the split is tested
     EXPECT_LT(worst_tangent, 0.01) << "spread " << spread << ", multiple scattering " << multiple;
     }
 }
@@ -519,8 +531,8 @@ TEST(ShellRenderer, KeyLightsAreTheLightsOfMostEnergy) {
 }
 
 // Where nothing is in the way (fibres of radius 1e-7: n ≈ 1e-5) and without the own cluster's shadow, a key light lit
-// per fragment, with its weight from the lighting pass's texels and re at its own azimuth, is the light that the sums
-// carried: the image with the brighter of two lights as a key light is the image without, to rounding, on the Fourier
+// per fragment, with its weight from the lighting pass's texels and re at its own azimuth (key_re_mean false), is the
+// light that the sums carried: the image with the brighter of two lights as a key light is the image without, to rounding, on the Fourier
 // path and on the per-fragment path. Bound: two steps of a half float at the brightest pixel (2⁻⁹ of it: the
 // compositing stores half floats; measured one step, the sums' order differs).
 TEST(ShellRenderer, KeyLightsLightAsTheSumsWhereNothingIsInTheWay) {
@@ -533,6 +545,7 @@ TEST(ShellRenderer, KeyLightsLightAsTheSumsWhereNothingIsInTheWay) {
     s.background = glm::vec3(0.0f);
     s.fiber_radius = 1e-7f;
     s.own_cluster_shadow = false;
+    s.key_re_mean = false;
     for (const bool per_fragment : {false, true}) {
         s.lighting_per_fragment = per_fragment;
         s.key_lights = 0;
@@ -584,6 +597,7 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     s.samples = 1;
     s.background = glm::vec3(0.0f);
     s.key_lights = 1;
+    s.key_toward_camera = s.key_toward_light = 0.0f;  // at the slab's points (the moves: below)
     s.hair.multiple = false;  // the light that crosses the fibres unscattered alone: D e^{-n}
     s.lod_pixels = 0.0f;
     const float radius = 0.1f;  // thick, so that the layer's own fibres shadow its slab
@@ -658,6 +672,21 @@ TEST(ShellRenderer, AKeyLightShadowsEachLayerOverItsSlab) {
     ASSERT_GT(brightest, 0.0f);
     EXPECT_LE(test::max_difference(unshadowed_key, thin), 1e-3 * brightest);
     EXPECT_GT(near_face(unshadowed_key), 1.5 * near_face(shadowed)) << "the slab keeps under 0.7 of the light";
+    // The reads moved (ShellSettings::key_toward_camera, key_toward_light): here the light shines from the camera, so
+    // either move takes the slab's points out toward both, past fibres of their own layer, and the transmittance rises.
+    // At the near face's centre both moves go the same way: 2 voxels of either keep the same light (measured within
+    // 0.01; bound 0.05 as above, the vertices about the centre seeing the camera at slightly other angles).
+    s.debug = 5;
+    s.key_toward_camera = 2.0f;
+    const double toward_camera = near_face(renderer.render(camera, s)) / a;
+    s.key_toward_camera = 0.0f;
+    s.key_toward_light = 2.0f;
+    const double toward_light = near_face(renderer.render(camera, s)) / a;
+    std::printf("debug 5 with the reads moved 2 voxels: toward the camera %.3f, toward the light %.3f (unmoved %.3f)\n",
+                toward_camera, toward_light, t / a);
+    EXPECT_GT(toward_camera, t / a + 0.02);
+    EXPECT_GT(toward_light, t / a + 0.02);
+    EXPECT_NEAR(toward_camera, toward_light, 0.05);
 }
 
 TEST(ShellRenderer, PaintedAbsorptionChangesOnlyThePaintedCluster) {

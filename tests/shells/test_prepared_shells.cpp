@@ -2,12 +2,14 @@
 // the CPU without a GL context.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/quaternion.hpp>
 
 #include "db/hrir_db.h"
 #include "models/core/error.h"
+#include "models/sector_features.h"
 #include "online/shells/prepared_shells.h"
 #include "online/shells/record_atlas.h"
 #include "online/scene/cook.h"
@@ -91,6 +93,71 @@ TEST(PreparedShells, SectorLookupsAreBestFirstAndShadowSumsGrowInwards) {
                 EXPECT_LE(inner - outer, 1.0f + 1e-5f);
             }
         }
+}
+
+// The records of a denser sector are thinned to the sector's own density (cook.h sector_thinning): c is the sector's
+// mean density over its records' (weighted as the look-up weighs them), at most 1; the shadow sums are of the thinned
+// mean α. A style of the same shape at a tenth of the density is looked up again: its sectors' records cannot be
+// sparser than the database's sparsest, so every c falls, and the sums with it.
+TEST(PreparedShells, RecordsAreThinnedToTheirSectorsDensity) {
+    const auto density_of = [](double value) {
+        const std::string text = R"({"format": "coif-style", "version": 1,
+          "layout": {"core_radius": 0.2, "layers": 3, "s_t": 2, "s_u": 4, "grid": [8, 4], "mesh": [2, 2], "gaussian_width": 0.05},
+          "clusters": [{"name": "c0", "trajectory": [[0, 0, 0], [0, -5, 0], [0, -10, 0]], "a": [1.0], "b": [1.0],
+                        "theta_deg": [0], "density": {"kind": "uniform", "value": )" + std::to_string(value) + "}}]}";
+        return parse_style(text, "<density " + std::to_string(value) + ">");
+    };
+    for (const double value : {0.5, 0.02}) {
+        const HairStyle style = density_of(value);
+        const PreparedShells p = prepare_shells(style, test_index(), test_atlas().mean_alpha, glm::mat3(1.0f));
+        // The same look-ups from the features the cook looks up with.
+        const DiskLayout& L = style.layout;
+        const Cluster& cluster = style.clusters[0];
+        const std::vector<SectorDensity> grids = cluster_sector_densities(*cluster.shape, L, *cluster.density);
+        std::vector<float> rows;
+        for (std::size_t s = 0; s < L.sector_count(); ++s) {
+            const SectorRef ref = sector_ref(L, s);
+            const SectorShape sh = sector_shape(*cluster.shape, L, ref.plane, ref.layer, ref.sector);
+            const RawFeatures f = raw_sector_features(grids[s], sh.depth / L.gaussian_width, sh.width / std::max(sh.depth, 1e-12));
+            rows.insert(rows.end(), f.begin(), f.end());
+        }
+        const std::vector<SectorMatch> matches = test_index().match_all(rows);
+        ASSERT_EQ(matches.size(), p.sectors.size());
+        std::vector<double> thinned(p.sectors.size());  // each sector's thinned mean α
+        double c_sum = 0;
+        for (std::size_t s = 0; s < p.sectors.size(); ++s) {
+            const SectorMatch& m = matches[s];
+            double record = 0, weights = 0, alpha = 0;
+            for (int n = 0; n < m.k; ++n) {
+                record += m.weight[n] * test_db().features(m.id[n])[kMeanDensityColumn];
+                alpha += m.weight[n] * test_atlas().mean_alpha[m.id[n]];
+                weights += m.weight[n];
+            }
+            const double c = std::clamp(rows[s * kRawFeatureCount + kMeanDensityColumn] / (record / weights), 0.0, 1.0);
+            EXPECT_NEAR(p.sectors[s].shadow.z, c, 1e-5) << "density " << value << ", sector " << s;
+            thinned[s] = 1.0 - std::pow(1.0 - alpha, c);
+            c_sum += c;
+        }
+        // 004 eq. 12's sums, of the thinned mean α: the layers outside (x) and every layer (y).
+        for (int i = 0; i <= L.s_t; ++i)
+            for (int k = 0; k < L.s_u; ++k) {
+                double outer = 0;
+                for (int j = L.layers - 1; j >= 0; --j) {
+                    const std::size_t s = L.sector_index(i, j, k);
+                    EXPECT_NEAR(p.sectors[s].shadow.x, outer, 1e-5);
+                    outer += thinned[s];
+                }
+                EXPECT_NEAR(p.sectors[L.sector_index(i, 0, k)].shadow.y, outer, 1e-5);
+            }
+        const double mean_c = c_sum / static_cast<double>(p.sectors.size());
+        std::printf("density %.2f: the records' mean thinning c %.3f over %zu sectors\n", value, mean_c, p.sectors.size());
+        if (value < 0.1) {
+            EXPECT_LT(mean_c, 0.5);  // a twenty-fifth of the density: thinned
+        }
+    }
+    EXPECT_EQ(thinned_alpha(0.5f, 1.0f), 0.5f);
+    EXPECT_NEAR(thinned_alpha(0.5f, 0.5f), 1.0f - std::sqrt(0.5f), 1e-6f);
+    EXPECT_EQ(thinned_alpha(0.7f, 0.0f), 0.0f);
 }
 
 TEST(PreparedShells, InstancesShareTheirPrototypeAndFollowTheirPlacement) {

@@ -90,6 +90,11 @@ TEST_F(ShellSettingsFile, CompositingModeByName) {
     EXPECT_EQ(refusal(R"({"shadow_outward": -0.1})").rfind("JSON /shadow_outward: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"own_cluster_inner": 4.5})").rfind("JSON /own_cluster_inner: ", 0), 0u);  // 0..4
     EXPECT_EQ(refusal(R"({"own_cluster_inner": -1})").rfind("JSON /own_cluster_inner: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"hot_spot": 9})").rfind("JSON /hot_spot: ", 0), 0u);  // 0..8
+    EXPECT_EQ(refusal(R"({"hot_spot": -1})").rfind("JSON /hot_spot: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"key_toward_camera": -0.5})").rfind("JSON /key_toward_camera: ", 0), 0u);  // 0..8 voxels
+    EXPECT_EQ(refusal(R"({"key_toward_light": 9})").rfind("JSON /key_toward_light: ", 0), 0u);
+    EXPECT_EQ(refusal(R"({"key_re_mean": 1})").rfind("JSON /key_re_mean: ", 0), 0u);
     EXPECT_EQ(refusal(R"({"compositing": true})").rfind("JSON /compositing: ", 0), 0u);
 }
 
@@ -109,6 +114,10 @@ TEST_F(ShellSettingsFile, WriteThenReadGivesTheSameSettings) {
     s.shadow_neighbours = !gl::ShellSettings{}.shadow_neighbours;
     s.shadow_outward = 0.25f;
     s.own_cluster_inner = 0.5f;
+    s.hot_spot = 4;
+    s.key_re_mean = false;
+    s.key_toward_camera = 0.5f;
+    s.key_toward_light = 2.25f;
     s.tilt_per_strip = false;
     s.sector_per_strip = false;
     s.fiber_radius = 0.03f;
