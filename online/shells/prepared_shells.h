@@ -43,7 +43,7 @@ struct ShellSector {  // shell_shade.glsl ShellSector
     glm::uvec4 id{0};         // nearest records, best first
     glm::vec4 weight{0};
     // x: Σ ᾱ of the outer sectors at the same (i, k); y: Σ ᾱ of every layer there (both thinned); z: the records'
-    // thinning c ∈ (0, 1] (online/scene/cook.h sector_thinning; shaders/gl/record_atlas.glsl thinned_alpha); w unused.
+    // thinning c ∈ [0, 1] (online/scene/cook.h sector_thinning; shaders/gl/record_atlas.glsl thinned_alpha); w unused.
     glm::vec4 shadow{0.0f, 0.0f, 1.0f, 0.0f};
 };
 struct ShellInstance {  // shell.vert ShellInstance

@@ -6,7 +6,7 @@
 
 uniform sampler3D u_key_volume[SHELL_KEY_LIGHTS];  // the fibres met toward each key light (KeyLightPass)
 // Shells' space → the volume's texture coordinates, each point first moved ShellSettings::key_toward_light voxels toward
-// the light (online/shell_passes.cpp key_reading_frame).
+// the light (online/shell_passes.cpp, ShellsPass::draw).
 uniform mat4 u_key_frame[SHELL_KEY_LIGHTS];
 uniform vec4 u_key_light[SHELL_KEY_LIGHTS];        // unit direction toward the light, λ
 uniform float u_key_toward_camera;                 // ShellSettings::key_toward_camera, in shells' units
