@@ -134,8 +134,9 @@ struct ShellSettings {
     // the share h is lit past the own cluster's factor with re's mean, the rest through it as before. Where a light
     // stands behind the camera, the fibres the camera sees through a cluster's gaps are lit through the same gaps, which
     // eq. 12's factor takes as independent of the view (shaders/gl/shell_lighting.comp SHELL_HOT_SPOT). 0: no split.
-    // 2 by the sweeps (docs/quality.md, "The records thinned to their sectors' density, and the lights' hot spot").
-    int hot_spot = 2;
+    // 4 by the detail ratio and the blurred PSNR against the reference, the sweeps alike (docs/quality.md, "The records
+    // thinned to their sectors' density, and the lights' hot spot").
+    int hot_spot = 4;
     // The brightest lights (by |lum(L_j)| times their solid angle), up to 4, lit with their own shadow: the fibres met
     // from each vertex of the shells toward the light (from each fragment with lighting_per_fragment), read from a
     // volume aligned with the light and made from a finer grid of the strands (online/shell_passes.h KeyLightPass),

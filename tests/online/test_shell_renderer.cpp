@@ -100,7 +100,7 @@ TEST(ShellRenderer, LightingPassMatchesCpuEvaluatorUnderOneNarrowLight) {
         const glm::vec3 T = glm::normalize(s[1]);
         const glm::vec3 r0 = glm::normalize(s[2] - glm::dot(s[2], T) * T);
         const LightingSample& sample = renderer.prepared().samples[static_cast<std::size_t>(r)];
-        // The light's hot-spot share, h = max(0, l · v)², lit apart (shell_lighting.comp SHELL_HOT_SPOT).
+        // The light's hot-spot share, h = max(0, l · v)^hot_spot, lit apart (shell_lighting.comp SHELL_HOT_SPOT).
         const float h = std::pow(std::max(glm::dot(light.omega, view), 0.0f), static_cast<float>(settings.hot_spot));
         h_max = std::max(h_max, h);
         glm::vec3 m(sample.tilt_mean), a(sample.tilt_a), b(sample.tilt_b);

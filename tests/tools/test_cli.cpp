@@ -489,7 +489,7 @@ TEST(CliSlow, FramesBeyondTheFragmentStorageAreDrawnInTiles) {
 // whose order errors brighten the hair (measured at 720x480: 24.2 dB, radiance 1.003-1.245). Here, at 240x160, each
 // strip of a sector draws its fibre tangent and sector by a hash (docs/quality.md, "One tangent per strip"), which the
 // coarser levels of detail move onto other pixels: high measures 34.9 dB (39.0 at 720x480, `coif bench render`) / detail
-// 1.024 / radiance 1.000-1.006 / mask IoU 0.979 (since the records' thinning 34.9 dB / 1.039 / 1.016-1.023 / 0.969); medium 33.7 / 1.046 / 1.003-1.008 / 0.961; low 28.2 / 0.866 /
+// 1.024 / radiance 1.000-1.006 / mask IoU 0.979 (since the records' thinning 34.8 dB / 1.038 / 1.015-1.020 / 0.969); medium 33.7 / 1.046 / 1.003-1.008 / 0.961; low 28.2 / 0.866 /
 // 0.893-1.082 / 0.950 (its coarse meshes and sorted blending move the silhouette). high is asked for 34 dB here, and a
 // mask IoU of 0.95 (low 0.94).
 // An unknown preset is refused (exit 2 on the command line, 1 in a parameters file, as every bad key there).
@@ -560,8 +560,8 @@ TEST(Cli, BenchRenderParamsApplyOverEachPreset) {
 // 360 × 240 39.8 dB, detail 1.017, radiance 0.989–1.000; culling 20 % instead of 5 % fell to 34.0 dB and 0.952. Here,
 // at 240 × 160: 38.9 dB, detail 1.070, radiance 0.983–0.996; with one key light, the default since, 37.5 dB, detail
 // 1.006, radiance 0.979–0.997, and without it now 36.9 dB, 1.027, 0.973–0.992: docs/renderer.md "Key lights").
-// At 360 × 240 since the records' thinning: 39.3 dB, detail 1.016, radiance 0.994–1.006. At 240 × 160 the coarsest
-// level of detail, which draws most clusters there, darkens the thinned hair to 0.958–0.972 of full: off the rule, and
+// At 360 × 240 since the records' thinning: 39.3 dB, detail 1.017, radiance 0.994–1.005. At 240 × 160 the coarsest
+// level of detail, which draws most clusters there, darkens the thinned hair to 0.957–0.972 of full: off the rule, and
 // an open end of docs/renderer.md ("Level of detail"); a finer budget that holds it there (14 px) brightens the default
 // view past it instead (1.038–1.044 at 240 × 160, QualityPresetsStayWithinTheirBoundsOfFull).
 TEST(Cli, TheDefaultPresetHoldsItsRuleOfFullUnderTheCityMapFromBehind) {

@@ -120,9 +120,9 @@ TEST(LightSweepSlow, AKeyLightDrawsTheReferencesShapesUnderOneNarrowLightFrom26D
 // elevation 40° is in at 0.805). With the shadows from the cluster's outer side and its side toward the hair's inside
 // (since; docs/quality.md, "The cluster's side toward the hair's inside"): 48 of 48 in 0.84–1.19 and 72 of 72 in
 // 0.85–1.22 (46 and 71 with `own_cluster_inner` 0: the courtyard turned 90° and 270° at 1.31 and 1.28 in red, the view
-// from 270° below at 1.27 in blue). With the records thinned and the lights' hot spot (since): 47 of 48 in 0.88–1.25
-// (the courtyard turned 270°, red 1.253) and 71 of 72 in 0.88–1.26 (270° below, blue 1.257), the mean |ln ratio| lower
-// (docs/quality.md, "The records thinned to their sectors' density, and the lights' hot spot"). Ratios lie within
+// from 270° below at 1.27 in blue). With the records thinned and the lights' hot spot (since): 48 of 48 in 0.87–1.23
+// and 71 of 72 in 0.86–1.26 (270° below, blue 1.26), the mean |ln ratio| 0.061 and 0.066 (docs/quality.md, "The
+// records thinned to their sectors' density, and the lights' hot spot"). Ratios lie within
 // 0.03–0.04 of the band's edges, so the test asks for 47 of 48 and 71
 // of 72, and every ratio in [0.7, 1.6]: it fails on a return to the maps' 2–6× of the issue, or on two ratios leaving
 // the band, and not on one ratio at the edge moving by the references' noise (well under 1 % of a mean over ~1 500 hair
