@@ -89,6 +89,12 @@ vec3 shell_light_weight_fibres(HairParams hp, vec3 V, vec3 T, vec3 r0, vec3 m, v
     return w * (1.0 / float(SHELL_TANGENTS));
 }
 
+// Light j's share in the lights' hot spot, max(0, l_j · v)^p (ShellSettings::hot_spot; v toward the camera): the part
+// of it that the lighting pass and the per-fragment path light past the own cluster's factor.
+float shell_hot_spot_share(int j, vec3 v, int p) {
+    return pow(max(dot(normalize(lights[j].direction_lambda.xyz), v), 0.0), float(p));
+}
+
 // Light j's spread as an in-plane angle λ' (sector_frame.glsl light_spread).
 float shell_light_spread(int j, vec3 T) { return light_spread(lights[j].direction_lambda.xyz, lights[j].direction_lambda.w, T); }
 

@@ -187,7 +187,7 @@ void main() {
             vec3 l = lights[j].direction_lambda.xyz;
 #if SHELL_HOT_SPOT > 0
             {
-                float h = pow(max(dot(normalize(l), V), 0.0), float(SHELL_HOT_SPOT));
+                float h = shell_hot_spot_share(j, V, SHELL_HOT_SPOT);
                 hot += h * wj;
                 wj *= 1.0 - h;
             }

@@ -216,6 +216,13 @@ int strip_rank(uint sector, int strip, uint salt) {
 // their mean lights every fibre alike and smooths away the fibre-to-fibre contrast of the highlights. So each strip is
 // lit as one fibre at one of the four, every group of 4 strips taking each once.
 int fibre_strip_tangent(uint sector, float x) { return strip_rank(sector, fibre_strip(x), 0u); }
+
+// Tangent q's share of a light whose luminance each of the four tangents carries in `per_tangent` (texels 8 and
+// LIGHTING_HOT_TEXEL + 1, on the light's scale): over their mean, not below 0; 1 where they carry none.
+float tangent_share(vec4 per_tangent, int q) {
+    float mean = 0.25 * (per_tangent.x + per_tangent.y + per_tangent.z + per_tangent.w);
+    return mean > 1e-20 ? max(per_tangent[q], 0.0) / mean : 1.0;
+}
 #endif
 
 vec4 atlas_fetch(uint tile, vec2 p) {
@@ -473,7 +480,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         // the lighting pass splits each light but the key lights alike), a key light's whole with key_re_mean.
         float mean_share = 0.0;
 #if SHELL_HOT_SPOT > 0
-        mean_share = pow(max(dot(normalize(lights[j].direction_lambda.xyz), V), 0.0), float(SHELL_HOT_SPOT));
+        mean_share = shell_hot_spot_share(j, V, SHELL_HOT_SPOT);
 #endif
 #if SHELL_KEY_LIGHTS > 0
         if (key >= 0) mean_share = float(SHELL_KEY_MEAN);
@@ -648,11 +655,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
         float reach_mean = 0.25 * (reach.x + reach.y + reach.z + reach.w);
         float reach_abs = 0.25 * (abs(reach.x) + abs(reach.y) + abs(reach.z) + abs(reach.w));
         int q = fibre_strip_tangent(top, x);
-        float c0_mean = 0.25 * (L8.x + L8.y + L8.z + L8.w);
-        float share = reach_mean > 0.5 * reach_abs && reach_mean > 0.0 ? reach[q] / reach_mean
-                      : c0_mean > 1e-20                              ? max(L8[q], 0.0) / c0_mean
-                                                                     : 1.0;
-        sum *= share;
+        sum *= reach_mean > 0.5 * reach_abs && reach_mean > 0.0 ? reach[q] / reach_mean : tangent_share(L8, q);
 #if SHELL_HOT_SPOT > 0
         // The hot spot's own share of the strip's tangent: its light is re's mean's alone, so C_0's share.
 #if SHELL_LIGHTING == 1
@@ -660,8 +663,7 @@ vec4 shell_shade_layer(vec3 position, vec3 tangent, vec3 normal, vec3 axis_norma
 #else
         vec4 hot_tangent = lighting_fetch(texcoord.y, info.y, LIGHTING_HOT_TEXEL + 1);
 #endif
-        float hot_mean = 0.25 * (hot_tangent.x + hot_tangent.y + hot_tangent.z + hot_tangent.w);
-        hot *= hot_mean > 1e-20 ? max(hot_tangent[q], 0.0) / hot_mean : 1.0;
+        hot *= tangent_share(hot_tangent, q);
 #endif
     }
 #endif

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <glm/gtc/quaternion.hpp>
 
+#include "db/coverage.h"
 #include "db/hrir_db.h"
 #include "models/core/error.h"
 #include "models/sector_features.h"
@@ -110,17 +111,9 @@ TEST(PreparedShells, RecordsAreThinnedToTheirSectorsDensity) {
     for (const double value : {0.5, 0.02}) {
         const HairStyle style = density_of(value);
         const PreparedShells p = prepare_shells(style, test_index(), test_atlas().mean_alpha, glm::mat3(1.0f));
-        // The same look-ups from the features the cook looks up with.
+        // The same look-ups, from the style's sector features (db/coverage.h, the rows the cook looks up).
         const DiskLayout& L = style.layout;
-        const Cluster& cluster = style.clusters[0];
-        const std::vector<SectorDensity> grids = cluster_sector_densities(*cluster.shape, L, *cluster.density);
-        std::vector<float> rows;
-        for (std::size_t s = 0; s < L.sector_count(); ++s) {
-            const SectorRef ref = sector_ref(L, s);
-            const SectorShape sh = sector_shape(*cluster.shape, L, ref.plane, ref.layer, ref.sector);
-            const RawFeatures f = raw_sector_features(grids[s], sh.depth / L.gaussian_width, sh.width / std::max(sh.depth, 1e-12));
-            rows.insert(rows.end(), f.begin(), f.end());
-        }
+        const std::vector<float> rows = style_sector_features(style);
         const std::vector<SectorMatch> matches = test_index().match_all(rows);
         ASSERT_EQ(matches.size(), p.sectors.size());
         std::vector<double> thinned(p.sectors.size());  // each sector's thinned mean α
