@@ -20,11 +20,7 @@ std::vector<float> style_sector_features(const HairStyle& style) {
         std::vector<float>& block = prototype_rows[c.prototype];
         if (block.empty()) {
             const Cluster& proto = style.clusters[c.prototype];
-            for (const SectorDensity& d : cluster_sector_densities(*proto.shape, style.layout_of(c.prototype), *proto.density)) {
-                const double depth = std::max(d.depth, 1e-12);
-                const RawFeatures f = raw_sector_features(d, depth / lambda, d.width / depth);
-                block.insert(block.end(), f.begin(), f.end());
-            }
+            block = sector_feature_rows(cluster_sector_densities(*proto.shape, style.layout_of(c.prototype), *proto.density), lambda);
         }
         rows.insert(rows.end(), block.begin(), block.end());
     }

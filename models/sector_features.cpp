@@ -6,6 +6,17 @@
 
 namespace coif {
 
+std::vector<float> sector_feature_rows(std::span<const SectorDensity> sectors, double lambda) {
+    std::vector<float> rows;
+    rows.reserve(sectors.size() * kRawFeatureCount);
+    for (const SectorDensity& d : sectors) {
+        const double depth = std::max(d.depth, 1e-12);
+        const RawFeatures f = raw_sector_features(d, depth / lambda, d.width / depth);
+        rows.insert(rows.end(), f.begin(), f.end());
+    }
+    return rows;
+}
+
 RawFeatures raw_sector_features(const SectorDensity& feature_grid, double depth_over_lambda, double width_over_depth) {
     RawFeatures f{};
     const auto paper = paper_features(feature_grid);

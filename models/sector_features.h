@@ -11,6 +11,7 @@
 //   columns [3, 3 + rich count)    rich_features
 //   last two                       ln(depth/λ), ln(width/depth), each argument clamped to ≥ 1e-6
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ inline constexpr int kMeanDensityColumn = kRichColumn0 + kMeanDensity;  // a sec
 using RawFeatures = std::array<float, kRawFeatureCount>;
 
 RawFeatures raw_sector_features(const SectorDensity& feature_grid, double depth_over_lambda, double width_over_depth);
+// The look-up rows of a cluster's sectors (models/hair_style.h cluster_sector_densities, in its order): each sector's raw
+// features at its own depth over λ (the style's Gaussian width) and width over depth, kRawFeatureCount floats a sector.
+// What the cook looks up (online/scene/cook.h) and what `coif db coverage` measures (db/coverage.h) are these rows.
+std::vector<float> sector_feature_rows(std::span<const SectorDensity> sectors, double lambda);
 std::vector<std::string> raw_feature_names();  // one name per column, in column order
 
 }  // namespace coif

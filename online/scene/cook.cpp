@@ -423,14 +423,7 @@ void prepare_prototypes_cached(PreparedShells& m, const HairStyle& style, const 
             m.meshes[p].push_back(range);
             m.triangles += mesh.indices.size() / 3;
         }
-        const std::vector<SectorDensity> grids = cluster_sector_densities(shape, L, *proto.density);
-        std::vector<float> rows(per_proto * kRawFeatureCount);
-        for (std::size_t s = 0; s < per_proto; ++s) {
-            const SectorRef ref = sector_ref(L, s);
-            const SectorShape sh = sector_shape(shape, L, ref.plane, ref.layer, ref.sector);
-            const RawFeatures f = raw_sector_features(grids[s], sh.depth / lambda, sh.width / std::max(sh.depth, 1e-12));
-            std::copy(f.begin(), f.end(), rows.begin() + static_cast<std::ptrdiff_t>(s * kRawFeatureCount));
-        }
+        const std::vector<float> rows = sector_feature_rows(cluster_sector_densities(shape, L, *proto.density), lambda);
         const std::vector<SectorMatch> matches = satf.match_all(rows);
         std::vector<float> sector_alpha(per_proto, 0.0f);
         for (std::size_t s = 0; s < per_proto; ++s) {

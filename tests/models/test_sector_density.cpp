@@ -6,6 +6,7 @@
 
 #include "models/hair_style.h"
 #include "models/sector_density.h"
+#include "models/sector_features.h"
 
 namespace coif {
 namespace {
@@ -130,6 +131,24 @@ TEST(DensityFeatures, RichFeaturesSeeWhereTheHairIs) {
     const SectorDensity big = left.scaled(2.0);
     EXPECT_DOUBLE_EQ(big.width, 2.0);
     EXPECT_NEAR(big.integral(), 4 * left.integral(), 1e-9);
+}
+
+TEST(DensityFeatures, SectorRowsAreEachSectorsRawFeaturesAtItsOwnShape) {
+    // The rows the cook looks up and `coif db coverage` measures: per sector, raw_sector_features at its depth over λ and
+    // its width over depth, one block of kRawFeatureCount after another, exactly.
+    const double lambda = 0.25;
+    const std::vector<SectorDensity> sectors = {
+        density_from_function(8, 4, 1.0, 0.5, [](double s, double r) { return s + r; }),
+        density_from_function(8, 4, 2.0, 0.25, [](double, double) { return 3.0; })};
+    const std::vector<float> rows = sector_feature_rows(sectors, lambda);
+    ASSERT_EQ(rows.size(), 2u * kRawFeatureCount);
+    for (std::size_t k = 0; k < sectors.size(); ++k) {
+        const RawFeatures f = raw_sector_features(sectors[k], sectors[k].depth / lambda, sectors[k].width / sectors[k].depth);
+        for (int c = 0; c < kRawFeatureCount; ++c) EXPECT_EQ(rows[k * kRawFeatureCount + c], f[c]) << k << ", " << c;
+    }
+    // The two shape columns tell the sectors apart (the density alone does not: 004 §5.2's size in λ).
+    EXPECT_NE(rows[kShapeColumn0], rows[kRawFeatureCount + kShapeColumn0]);
+    EXPECT_TRUE(sector_feature_rows({}, lambda).empty());
 }
 
 }  // namespace
