@@ -566,6 +566,59 @@ TEST(ShellRenderer, KeyLightsLightAsTheSumsWhereNothingIsInTheWay) {
     }
 }
 
+// Lighting samples other than the mesh rows (`coif render --lighting-rows`) make the shells fetch the lighting sums per
+// fragment (shell_shade.glsl SHELL_LIGHTING 0), where a key light's slab is read per fragment too, from the clusters'
+// axes (key_slab). That variant once failed to compile (the axes were not declared in it), so that --lighting-rows with
+// the default key light stopped `coif render`. Here it draws the twisted cluster with the default key light:
+//   - with fibres too thin to shadow, as the mesh rows' per-vertex read does, the same light at other sample positions
+//     along the axis: mean radiance within 1 % per channel (measured 0.2 %), the coverage the same;
+//   - shadowed, darker than the per-vertex read, whose weights interpolate the transmittance e^(−n) linearly between the
+//     vertices where the fragment's read takes it at the fragment (measured 0.74–0.77 of it; AKeyLightShadowsEachLayer-
+//     OverItsSlab below measures the same: 0.41 per fragment, 0.55 per vertex). Bound [0.6, 1.0]: the variant draws the
+//     shadowed light, not none and not the unshadowed.
+TEST(ShellRenderer, KeyLightsDrawWithLightingSamplesOtherThanTheMeshRows) {
+    auto context = gl::Context::headless();
+    const HairStyle style = twisted_cluster_style();
+    gl::ShellRenderer rows(cook_shells(style, test_index(), glm::mat3(1.0f)));
+    gl::ShellRenderer other(cook_shells(style, test_index(), glm::mat3(1.0f), 3));
+    ASSERT_NE(rows.lighting_rows(), other.lighting_rows());
+    rows.set_lights(two_lights());
+    other.set_lights(two_lights());
+    const Camera camera = front_camera(rows);
+    gl::ShellSettings s;
+    s.samples = 1;
+    s.background = glm::vec3(0.0f);
+    ASSERT_EQ(s.key_lights, 1);  // the default
+    for (const bool thin : {true, false}) {
+        s.fiber_radius = thin ? 1e-7f : 0.0f;  // 0: the style's auto radius
+        const Image a = rows.render(camera, s);
+        const Image b = other.render(camera, s);
+        double sum_a[3] = {0, 0, 0}, sum_b[3] = {0, 0, 0}, cover_a = 0, cover_b = 0;
+        for (std::size_t i = 0; i < a.pixels.size(); i += 4) {
+            for (int c = 0; c < 3; ++c) {
+                sum_a[c] += a.pixels[i + c];
+                sum_b[c] += b.pixels[i + c];
+            }
+            cover_a += a.pixels[i + 3];
+            cover_b += b.pixels[i + 3];
+        }
+        std::printf("%s: lighting rows %d against %d: radiance %.4f %.4f %.4f of the mesh rows'; coverage %.4f\n",
+                    thin ? "unshadowed" : "shadowed", other.lighting_rows(), rows.lighting_rows(), sum_b[0] / sum_a[0],
+                    sum_b[1] / sum_a[1], sum_b[2] / sum_a[2], cover_b / cover_a);
+        ASSERT_GT(cover_a, 10.0);
+        EXPECT_NEAR(cover_b / cover_a, 1.0, 1e-3);
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_GT(sum_a[c], 0.0);
+            if (thin) {
+                EXPECT_NEAR(sum_b[c] / sum_a[c], 1.0, 0.01) << c;
+            } else {
+                EXPECT_GE(sum_b[c] / sum_a[c], 0.6) << c;
+                EXPECT_LE(sum_b[c] / sum_a[c], 1.0) << c;
+            }
+        }
+    }
+}
+
 // A shell point stands for its layer's fibres, from the layer's surface in to the next layer, and a key light's shadow
 // is taken over that slab (shaders/gl/key_light_volume.glsl key_slab). One round cluster of one layer (ρ 0.2 to 1), lit
 // by a narrow key light from the camera: at the centre of the image of the cluster the camera sees the layer's near face
