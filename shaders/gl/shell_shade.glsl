@@ -104,8 +104,9 @@ uniform float u_d_f;  // Zinke's d_f for the own cluster's forward-scattered lig
 #if SHELL_LIGHTING == 2
 #include "shaders/gl/shell_light.glsl"
 #include "shaders/gl/lighting_samples.glsl"
-#elif SHELL_KEY_LIGHTS > 0 && (SHELL_LIGHTING == 0 || SHELL_DEBUG == 5)
-#include "shaders/gl/lighting_samples.glsl"  // the clusters' axes, for the key lights' slab read per fragment (key_slab)
+#elif SHELL_KEY_LIGHTS > 0 && (SHELL_LIGHTING != 1 || SHELL_DEBUG == 5)
+// The clusters' axes, for the key lights' slab where a fragment reads it (key_slab below, under the same condition).
+#include "shaders/gl/lighting_samples.glsl"
 #endif
 #include "shaders/gl/shell_lighting_fetch.glsl"
 #if SHELL_LIGHTING == 1
