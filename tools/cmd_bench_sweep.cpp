@@ -3,6 +3,7 @@
 // ring of views, each case compared by the appearance metrics (docs/quality.md). The sweeps that docs/quality.md
 // measures item 1 by, as one command.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -34,6 +35,8 @@ using coif::cli::shell_quote;
 
 // The band for each channel's radiance ratio, render / reference.
 constexpr double kBandLow = 0.8, kBandHigh = 1.25;
+// --where-lit's cells, in pixels: 4 × 4 at the sweeps' 96 × 64 (docs/quality.md, "Where the light reaches").
+constexpr int kLitCell = 4;
 // The narrow light of the single-light sweep: λ = 0.1, L = 300 (docs/quality.md, "The fibres' tangents about the axis").
 constexpr float kNarrowLambda = 0.1f, kNarrowRadiance = 300.0f;
 const char* const kSets[] = {"lights", "maps", "ring"};
@@ -50,7 +53,7 @@ struct SweepOptions {
     std::string params, db, data = "../shared/data", references, keep;
     std::vector<std::string> cases;
     int width = 96, height = 64, spp = 64, max_depth = 10, map_lights = 40;
-    bool no_shadows = false, list = false, json = false;
+    bool no_shadows = false, where_lit = false, list = false, json = false;
 };
 
 // One case: the same lights file and the same `how` (a rotation or a view) given to both renderers.
@@ -198,6 +201,10 @@ void add_bench_sweep(CLI::App& root) {
     cmd->add_option("--spp", o->spp, "Samples per pixel of the references (default 64)")->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-depth", o->max_depth, "The references' most scattering events per path (default 10; 1 = single scattering, to set beside {\"multiple\": false})")->check(CLI::Range(1, 1000));
     cmd->add_flag("--no-shadows", o->no_shadows, "The references light every fibre unshadowed (set beside {\"shadows\": false, \"own_cluster_shadow\": false})");
+    cmd->add_flag("--where-lit", o->where_lit,
+                  "With --no-shadows: weigh each case's radiance ratio by where the light reaches, 4 x 4-pixel cells each weighed by "
+                  "the share of the light a second reference, with shadows, keeps there (the lighting at the fibres' tangents where "
+                  "the shadowed image takes it; docs/quality.md, \"Where the light reaches\")");
     cmd->add_option("--width", o->width, "Image width in pixels (default 96)")->check(CLI::Range(8, 4096));
     cmd->add_option("--height", o->height, "Image height in pixels (default 64)")->check(CLI::Range(8, 4096));
     cmd->add_option("--data", o->data, "Folder of the maps for the maps and ring sets (default ../shared/data)");
@@ -210,7 +217,8 @@ void add_bench_sweep(CLI::App& root) {
     coif::cli::examples(cmd,
                         "  coif bench sweep --params full.json --references refs/            # full.json: {\"lod_pixels\": 0}\n"
                         "  coif bench sweep --set maps --set ring --params full.json --references refs/\n"
-                        "  coif bench sweep --max-depth 1 --params single.json --case \"light -1 0 0\"   # {\"lod_pixels\": 0, \"multiple\": false}");
+                        "  coif bench sweep --max-depth 1 --params single.json --case \"light -1 0 0\"   # {\"lod_pixels\": 0, \"multiple\": false}\n"
+                        "  coif bench sweep --max-depth 1 --no-shadows --where-lit --params lit.json   # {\"debug\": 6, \"multiple\": false, \"fourier_order\": 0}");
     cmd->callback([o] {
         // Clear errors before minutes of rendering. What of the parameters the reference reads: the fibre's keys and
         // fiber_radius (tools/reference_options.cpp).
@@ -234,6 +242,8 @@ void add_bench_sweep(CLI::App& root) {
             add(p.fiber_radius);
         }
         if (!o->db.empty() && !fs::is_regular_file(o->db)) throw coif::Error(o->db, "option --db", "is not a file");
+        if (o->where_lit && !o->no_shadows)
+            throw coif::Error::parameter("--where-lit", "weighs an unshadowed sweep by where the light reaches: add --no-shadows");
         const coif::cli::WorkFolder work(o->keep, "coif-bench-sweep-");
         const fs::path& dir = work.path();
         const bool temporary = work.temporary();
@@ -281,19 +291,23 @@ void add_bench_sweep(CLI::App& root) {
         for (std::size_t i = 0; i < cases.size(); ++i) {
             const Case& c = cases[i];
             const std::string stem = "case" + std::to_string(i);
-            const std::string ref_args = " --lights " + shell_quote(c.lights.string()) + c.how + size + params + " --spp " +
-                                         std::to_string(o->spp) + " --max-depth " + std::to_string(o->max_depth) +
-                                         (o->no_shadows ? " --no-shadows" : "");
-            fs::path reference = dir / (stem + "_reference.exr");
-            if (!o->references.empty()) {
-                // Named by what makes it: the lights' contents, the parameters the reference reads, the rotation or view,
-                // the size, the samples and the strands drawn (not the temporary paths).
-                const std::string key =
-                    read_text(c.lights) + params_key + c.how + size + ref_args.substr(ref_args.find(" --spp")) + strands_key;
-                reference = fs::path(o->references) / ("reference_" + hash_hex(key) + ".exr");
-            }
-            if (!fs::exists(reference))
-                coif::cli::run_self("reference" + ref_args + " -o " + shell_quote(reference.string()), dir / (stem + "_reference.log"));
+            const auto reference_of = [&](bool shadows, const std::string& name) {
+                const std::string ref_args = " --lights " + shell_quote(c.lights.string()) + c.how + size + params + " --spp " +
+                                             std::to_string(o->spp) + " --max-depth " + std::to_string(o->max_depth) +
+                                             (shadows ? "" : " --no-shadows");
+                fs::path reference = dir / (stem + "_" + name + ".exr");
+                if (!o->references.empty()) {
+                    // Named by what makes it: the lights' contents, the parameters the reference reads, the rotation or
+                    // view, the size, the samples and the strands drawn (not the temporary paths).
+                    const std::string key =
+                        read_text(c.lights) + params_key + c.how + size + ref_args.substr(ref_args.find(" --spp")) + strands_key;
+                    reference = fs::path(o->references) / ("reference_" + hash_hex(key) + ".exr");
+                }
+                if (!fs::exists(reference))
+                    coif::cli::run_self("reference" + ref_args + " -o " + shell_quote(reference.string()), dir / (stem + "_" + name + ".log"));
+                return reference;
+            };
+            const fs::path reference = reference_of(!o->no_shadows, "reference");
             const fs::path render = dir / (stem + "_render.exr");
             coif::cli::run_self("render --env " + shell_quote(c.lights.string()) + c.how + size + params +
                                     (o->db.empty() ? std::string() : " --db " + shell_quote(o->db)) + " -o " + shell_quote(render.string()),
@@ -303,6 +317,13 @@ void add_bench_sweep(CLI::App& root) {
             Row row;
             row.c = &c;
             for (int ch = 0; ch < 3; ++ch) row.ratio[ch] = r.appearance.radiance_ratio[ch];
+            if (o->where_lit) {
+                const fs::path shadowed = reference_of(true, "reference_shadowed");
+                const std::array<double, 3> lit =
+                    coif::lit_weighted_ratio(coif::read_image(reference), coif::read_image(shadowed), coif::read_image(render), kLitCell,
+                                             reference.string() + ", " + shadowed.string() + ", " + render.string());
+                for (int ch = 0; ch < 3; ++ch) row.ratio[ch] = lit[ch];
+            }
             row.blurred_psnr_db = r.appearance.blurred_psnr_db;
             row.flip = r.tone_mapped.flip;
             rows.push_back(row);
@@ -314,7 +335,8 @@ void add_bench_sweep(CLI::App& root) {
         for (const Row& r : rows) by_set[r.c->set].push_back(r);
         if (o->json) {
             nlohmann::json doc = {{"width", o->width}, {"height", o->height}, {"spp", o->spp}, {"max_depth", o->max_depth},
-                                  {"no_shadows", o->no_shadows}, {"params", o->params}, {"band", {kBandLow, kBandHigh}}};
+                                  {"no_shadows", o->no_shadows}, {"where_lit", o->where_lit}, {"params", o->params},
+                                  {"band", {kBandLow, kBandHigh}}};
             doc["cases"] = nlohmann::json::array();
             for (const Row& r : rows)
                 doc["cases"].push_back({{"set", r.c->set}, {"name", r.c->name}, {"radiance_ratio", {r.ratio[0], r.ratio[1], r.ratio[2]}},
@@ -344,8 +366,10 @@ void add_bench_sweep(CLI::App& root) {
                         set, s.in_band, s.ratios, kBandLow, kBandHigh, s.mean_abs_ln, s.sd_ln, s.lo, s.hi, s.level,
                         s.in_band_level_removed, s.blurred_mean, s.blurred_worst, s.flip_mean);
         }
-        std::printf("%dx%d over black, references %d spp at depth %d%s%s%s.\n", o->width, o->height, o->spp, o->max_depth,
-                    o->no_shadows ? " without shadows" : "", o->params.empty() ? "" : ", parameters ", o->params.c_str());
+        std::printf("%dx%d over black, references %d spp at depth %d%s%s%s%s.\n", o->width, o->height, o->spp, o->max_depth,
+                    o->no_shadows ? " without shadows" : "",
+                    o->where_lit ? ", radiance ratios weighed by where the light reaches (4 x 4-pixel cells)" : "",
+                    o->params.empty() ? "" : ", parameters ", o->params.c_str());
         if (!temporary) std::printf("renders, lights and logs in %s\n", dir.string().c_str());
     });
 }

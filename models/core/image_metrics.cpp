@@ -566,6 +566,42 @@ double detail_rms(const Planes& p, const std::vector<std::uint8_t>& both) {
 
 }  // namespace
 
+std::array<double, 3> lit_weighted_ratio(const Image& unshadowed, const Image& shadowed, const Image& test, int cell,
+                                         const std::string& names) {
+    if (cell < 1) throw Error::parameter("lit-weighted ratio", "the cell must be at least one pixel");
+    const Image* images[3] = {&unshadowed, &shadowed, &test};
+    for (const Image* im : images) {
+        if (im->width != unshadowed.width || im->height != unshadowed.height)
+            throw Error(names, "images", "the unshadowed, shadowed and test images differ in size");
+        if (im->channels < 3) throw Error(names, "images", "need RGB channels");
+        for (float v : im->pixels)
+            if (!std::isfinite(v)) throw Error(names, "pixels", "hold a value that is not finite");
+    }
+    const int cx = (unshadowed.width + cell - 1) / cell, cy = (unshadowed.height + cell - 1) / cell;
+    std::array<double, 3> num{}, den{};
+    for (int j = 0; j < cy; ++j)
+        for (int i = 0; i < cx; ++i) {
+            double sum[3][3] = {};  // image, channel
+            for (int y = j * cell; y < std::min((j + 1) * cell, unshadowed.height); ++y)
+                for (int x = i * cell; x < std::min((i + 1) * cell, unshadowed.width); ++x)
+                    for (int k = 0; k < 3; ++k)
+                        for (int c = 0; c < 3; ++c) sum[k][c] += images[k]->at(x, y)[c];
+            const double lit = sum[0][0] + sum[0][1] + sum[0][2];
+            if (!(lit > 0)) continue;
+            const double v = std::clamp((sum[1][0] + sum[1][1] + sum[1][2]) / lit, 0.0, 1.0);
+            for (int c = 0; c < 3; ++c) {
+                num[c] += v * sum[2][c];
+                den[c] += v * sum[0][c];
+            }
+        }
+    std::array<double, 3> ratio{};
+    for (int c = 0; c < 3; ++c) {
+        if (!(den[c] > 0)) throw Error(names, "images", "the light reaches no cell of the unshadowed image");
+        ratio[c] = num[c] / den[c];
+    }
+    return ratio;
+}
+
 AppearanceMetrics appearance_metrics(const Image& a, const Image& b, const HairMasks& masks, const Planes& ta, const Planes& tb,
                                      double blur_sigma, const std::string& names, int regions) {
     AppearanceMetrics m;

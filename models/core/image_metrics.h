@@ -62,6 +62,7 @@
 //   auto (default): alpha when the image has informative alpha, else background; an image with neither
 //               contributes nothing; if neither image yields a mask, compare_images throws coif::Error.
 //   none:       every pixel.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -212,6 +213,17 @@ void validate(const CompareOptions& options);
 // does not overlap (no pixel is hair in both, so there is no radiance to compare).
 CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& options,
                              const std::string& a_name = "A", const std::string& b_name = "B");
+
+// The radiance ratio of `test` against `unshadowed` where a light reaches (coif bench sweep --where-lit): each image
+// averaged over cells of `cell` × `cell` pixels, each cell weighed by the share of the light that reaches it,
+// V = Σ_c shadowed / Σ_c unshadowed over its channels, clamped to [0, 1] (0 where the unshadowed cell is black); per
+// channel Σ V · test / Σ V · unshadowed. `unshadowed` and `shadowed` are the same scene's references without and with
+// shadows, `test` a render lit unshadowed. An unshadowed ratio over the whole image weighs the fibres the light never
+// reaches as much as those it does; this one weighs them as the shadowed image does (docs/quality.md, "Where the light
+// reaches"). Throws coif::Error naming `names` if the sizes differ, a value is not finite, `cell` < 1, or no cell is
+// reached.
+std::array<double, 3> lit_weighted_ratio(const Image& unshadowed, const Image& shadowed, const Image& test, int cell,
+                                         const std::string& names);
 
 // The false-colour error picture: per-pixel error in [0, 1] through a magma-like ramp (black → purple →
 // orange → pale yellow); pixels outside the mask are drawn at a quarter of their brightness. Returns a

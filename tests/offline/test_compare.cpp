@@ -1,4 +1,5 @@
 // Image-quality metrics (models/core/image_metrics.h) and `coif compare`.
+#include <array>
 #include <cmath>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -39,6 +40,39 @@ Image uniform(int w, int h, float r, float g, float b) {
     Image img(w, h, 3);
     for (int i = 0; i < w * h; ++i) img.pixels[3 * i] = r, img.pixels[3 * i + 1] = g, img.pixels[3 * i + 2] = b;
     return img;
+}
+
+TEST(Compare, LitWeightedRatioWeighsEachCellByTheShareOfTheLightThatReachesIt) {
+    // Three 2 × 2 cells side by side (cell 2): the light reaches the first fully (V = 1), the second half (V = 0.5, a
+    // reddish shadow: V is of the channels' sum), the third not at all. The test image is 2×, 4× and 100× the
+    // unshadowed one there, so the ratio is (1 · 2 + 0.5 · 4) / (1 + 0.5) = 8/3 in every channel, whatever the third.
+    Image unshadowed(6, 2, 3, 1.0f), shadowed(6, 2, 3, 0.0f), test(6, 2, 3, 0.0f);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 6; ++x) {
+            const int cell = x / 2;
+            for (int c = 0; c < 3; ++c) {
+                shadowed.at(x, y)[c] = cell == 0 ? 1.0f : cell == 1 ? (c == 0 ? 1.5f : 0.0f) : 0.0f;
+                test.at(x, y)[c] = cell == 0 ? 2.0f : cell == 1 ? 4.0f : 100.0f;
+            }
+        }
+    const std::array<double, 3> r = lit_weighted_ratio(unshadowed, shadowed, test, 2, "cells");
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r[c], 8.0 / 3.0, 1e-12) << c;
+    // One cell of the whole image: V = Σ shadowed / Σ unshadowed = (4 · 3 + 4 · 1.5) / 36 = 0.5, and the ratio is the
+    // test's mean over the unshadowed's, (8 + 16 + 400) / 12 per channel.
+    const std::array<double, 3> whole = lit_weighted_ratio(unshadowed, shadowed, test, 8, "cells");
+    EXPECT_NEAR(whole[1], 424.0 / 12.0, 1e-9);
+    // Bad input: a clear error naming the images.
+    EXPECT_THROW(lit_weighted_ratio(unshadowed, shadowed, test, 0, "cells"), Error);
+    EXPECT_THROW(lit_weighted_ratio(unshadowed, shadowed, Image(4, 2, 3, 1.0f), 2, "cells"), Error);
+    Image nan = test;
+    nan.at(0, 0)[0] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(lit_weighted_ratio(unshadowed, shadowed, nan, 2, "cells"), Error);
+    try {
+        lit_weighted_ratio(unshadowed, Image(6, 2, 3, 0.0f), test, 2, "the kept images");
+        ADD_FAILURE() << "no cell reached";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("the kept images"));
+    }
 }
 
 TEST(Compare, IdenticalImagesGiveInfinitePsnrAndZeroFlip) {

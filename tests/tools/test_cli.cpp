@@ -1,4 +1,5 @@
 // The coif command as users meet it: help, exit codes, errors on stderr, no partial output files.
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -864,6 +865,27 @@ TEST(Cli, BenchSweepComparesEachCaseAsTheCommandsDo) {
     const auto bad = run_coif("bench sweep --case 'light 0 0 1' --params '" + (dir / "bad.json").string() + "'");
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_THAT(bad.err, HasSubstr("bad.json"));
+    fs::remove_all(dir);
+}
+
+TEST(Cli, BenchSweepWhereLitWeighsTheUnshadowedRatioByASecondShadowedReference) {
+    // --where-lit: each case's ratio is lit_weighted_ratio of the unshadowed reference, the shadowed one and the render,
+    // all three kept (--keep without --references keeps the references there too); only with --no-shadows.
+    const fs::path dir = test::scratch_dir("bench-sweep-lit");
+    std::ofstream(dir / "u.json") << R"({"debug": 6, "multiple": false, "fourier_order": 0})";
+    const auto r = run_coif("bench sweep --case 'light -1 0 0' --max-depth 1 --no-shadows --where-lit --spp 4 --width 48 --height 32 "
+                            "--params '" + (dir / "u.json").string() + "' --json --keep '" + (dir / "keep").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["where_lit"], true);
+    const fs::path k = dir / "keep";
+    const std::array<double, 3> by_hand =
+        coif::lit_weighted_ratio(coif::read_image(k / "case0_reference.exr"), coif::read_image(k / "case0_reference_shadowed.exr"),
+                                 coif::read_image(k / "case0_render.exr"), 4, "kept");
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(j["cases"][0]["radiance_ratio"][ch].get<double>(), by_hand[ch], 1e-12) << ch;
+    const auto shadowed = run_coif("bench sweep --case 'light -1 0 0' --where-lit");
+    EXPECT_EQ(shadowed.exit_code, 1);
+    EXPECT_THAT(shadowed.err, HasSubstr("--no-shadows"));
     fs::remove_all(dir);
 }
 
