@@ -201,8 +201,9 @@ void add_bench_sweep(CLI::App& root) {
     cmd->add_option("--spp", o->spp, "Samples per pixel of the references (default 64)")->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-depth", o->max_depth, "The references' most scattering events per path (default 10; 1 = single scattering, to set beside {\"multiple\": false})")->check(CLI::Range(1, 1000));
     cmd->add_flag("--no-shadows", o->no_shadows, "The references light every fibre unshadowed (set beside {\"shadows\": false, \"own_cluster_shadow\": false})");
+    const std::string cells = std::to_string(kLitCell) + " x " + std::to_string(kLitCell) + "-pixel cells";
     cmd->add_flag("--where-lit", o->where_lit,
-                  "With --no-shadows: weigh each case's radiance ratio by where the light reaches, 4 x 4-pixel cells each weighed by "
+                  "With --no-shadows: weigh each case's radiance ratio by where the light reaches, " + cells + " each weighed by "
                   "the share of the light a second reference, with shadows, keeps there (the lighting at the fibres' tangents where "
                   "the shadowed image takes it; docs/quality.md, \"Where the light reaches\")");
     cmd->add_option("--width", o->width, "Image width in pixels (default 96)")->check(CLI::Range(8, 4096));
@@ -312,15 +313,16 @@ void add_bench_sweep(CLI::App& root) {
             coif::cli::run_self("render --env " + shell_quote(c.lights.string()) + c.how + size + params +
                                     (o->db.empty() ? std::string() : " --db " + shell_quote(o->db)) + " -o " + shell_quote(render.string()),
                                 dir / (stem + "_render.log"));
-            const coif::CompareResult r = coif::compare_images(coif::read_image(reference), coif::read_image(render), {},
-                                                               reference.string(), render.string());
+            const coif::Image reference_image = coif::read_image(reference), render_image = coif::read_image(render);
+            const coif::CompareResult r =
+                coif::compare_images(reference_image, render_image, {}, reference.string(), render.string());
             Row row;
             row.c = &c;
             for (int ch = 0; ch < 3; ++ch) row.ratio[ch] = r.appearance.radiance_ratio[ch];
             if (o->where_lit) {
                 const fs::path shadowed = reference_of(true, "reference_shadowed");
                 const std::array<double, 3> lit =
-                    coif::lit_weighted_ratio(coif::read_image(reference), coif::read_image(shadowed), coif::read_image(render), kLitCell,
+                    coif::lit_weighted_ratio(reference_image, coif::read_image(shadowed), render_image, kLitCell,
                                              reference.string() + ", " + shadowed.string() + ", " + render.string());
                 for (int ch = 0; ch < 3; ++ch) row.ratio[ch] = lit[ch];
             }
@@ -368,7 +370,9 @@ void add_bench_sweep(CLI::App& root) {
         }
         std::printf("%dx%d over black, references %d spp at depth %d%s%s%s%s.\n", o->width, o->height, o->spp, o->max_depth,
                     o->no_shadows ? " without shadows" : "",
-                    o->where_lit ? ", radiance ratios weighed by where the light reaches (4 x 4-pixel cells)" : "",
+                    o->where_lit ? (", radiance ratios weighed by where the light reaches (" + std::to_string(kLitCell) + " x " +
+                                    std::to_string(kLitCell) + "-pixel cells)").c_str()
+                                 : "",
                     o->params.empty() ? "" : ", parameters ", o->params.c_str());
         if (!temporary) std::printf("renders, lights and logs in %s\n", dir.string().c_str());
     });

@@ -174,10 +174,21 @@ std::vector<float> feature_magnitude(const std::vector<float>& y, int w, int h, 
     return m;
 }
 
-void check_same_size(const Planes& a, const Planes& b) {
-    if (a.width != b.width || a.height != b.height)
-        throw Error::parameter("images", "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " and " +
-                                             std::to_string(b.width) + "x" + std::to_string(b.height));
+// Throws coif::Error::parameter naming `what` when the sizes differ.
+void check_same_size(int aw, int ah, int bw, int bh, const std::string& what) {
+    if (aw != bw || ah != bh)
+        throw Error::parameter(what, "sizes differ: " + std::to_string(aw) + "x" + std::to_string(ah) + " and " + std::to_string(bw) +
+                                         "x" + std::to_string(bh));
+}
+void check_same_size(const Planes& a, const Planes& b) { check_same_size(a.width, a.height, b.width, b.height, "images"); }
+// Throws coif::Error naming `name` and the first pixel that holds a NaN or an infinite value.
+void check_finite(const Image& im, const std::string& name) {
+    for (size_t i = 0; i < im.pixels.size(); ++i)
+        if (!std::isfinite(im.pixels[i])) {
+            const size_t px = i / im.channels;
+            throw Error(name, "pixel (" + std::to_string(px % im.width) + ", " + std::to_string(px / im.width) + ")",
+                        "NaN or infinite value");
+        }
 }
 
 // ACES filmic approximation (Narkowicz 2016) with the 0.6 pre-exposure folded in, as HDR-FLIP uses it.
@@ -265,9 +276,7 @@ HairMask image_hair_mask(const Image& image, MaskMode mode, float exposure, cons
 }
 
 HairMasks hair_masks(const Image& a, const Image& b, MaskMode mode, float exposure) {
-    if (a.width != b.width || a.height != b.height)
-        throw Error::parameter("images", "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " and " +
-                                             std::to_string(b.width) + "x" + std::to_string(b.height));
+    check_same_size(a.width, a.height, b.width, b.height, "images");
     HairMasks masks{image_hair_mask(a, mode, exposure, "A"), image_hair_mask(b, mode, exposure, "B"), {}};
     const HairMask& ma = masks.a;
     const HairMask& mb = masks.b;
@@ -571,11 +580,9 @@ std::array<double, 3> lit_weighted_ratio(const Image& unshadowed, const Image& s
     if (cell < 1) throw Error::parameter("lit-weighted ratio", "the cell must be at least one pixel");
     const Image* images[3] = {&unshadowed, &shadowed, &test};
     for (const Image* im : images) {
-        if (im->width != unshadowed.width || im->height != unshadowed.height)
-            throw Error(names, "images", "the unshadowed, shadowed and test images differ in size");
+        check_same_size(unshadowed.width, unshadowed.height, im->width, im->height, names);
         if (im->channels < 3) throw Error(names, "images", "need RGB channels");
-        for (float v : im->pixels)
-            if (!std::isfinite(v)) throw Error(names, "pixels", "hold a value that is not finite");
+        check_finite(*im, names);
     }
     const int cx = (unshadowed.width + cell - 1) / cell, cy = (unshadowed.height + cell - 1) / cell;
     std::array<double, 3> num{}, den{};
@@ -654,19 +661,10 @@ void validate(const CompareOptions& o) {
 
 CompareResult compare_images(const Image& a, const Image& b, const CompareOptions& o, const std::string& a_name,
                              const std::string& b_name) {
-    if (a.width != b.width || a.height != b.height)
-        throw Error::parameter(a_name + ", " + b_name, "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
-                                                           " and " + std::to_string(b.width) + "x" + std::to_string(b.height));
+    check_same_size(a.width, a.height, b.width, b.height, a_name + ", " + b_name);
     validate(o);
-    for (const auto* im : {&a, &b}) {
-        for (size_t i = 0; i < im->pixels.size(); ++i)
-            if (!std::isfinite(im->pixels[i])) {
-                const size_t px = i / im->channels;
-                throw Error(im == &a ? a_name : b_name,
-                            "pixel (" + std::to_string(px % im->width) + ", " + std::to_string(px / im->width) + ")",
-                            "NaN or infinite value");
-            }
-    }
+    check_finite(a, a_name);
+    check_finite(b, b_name);
     CompareResult r;
     r.width = a.width;
     r.height = a.height;
